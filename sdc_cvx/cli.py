@@ -36,7 +36,10 @@ def make_mission(**fields) -> Mission:
 
 
 catalog_option = click.option(
-    "--catalog", "catalog_path", type=click.Path(dir_okay=False), default=None,
+    "--catalog",
+    "catalog_path",
+    type=click.Path(dir_okay=False),
+    default=None,
     help="Debris catalog CSV (id, a_km, e, inc_deg, raan_deg[, epoch]); default: paper Table 5.",
 )
 
@@ -51,8 +54,13 @@ def main():
 @catalog_option
 @click.option("--preopt-days", type=float, default=None, help="Transfer duration bound T0 [days].")
 @click.option("--dv-max", "dv_max_mps", type=float, default=None, help="Edge cost filter [m/s].")
-@click.option("--departure-day", type=float, default=0.0, show_default=True,
-              help="Reference departure date of every edge [days after the start].")
+@click.option(
+    "--departure-day",
+    type=float,
+    default=0.0,
+    show_default=True,
+    help="Reference departure date of every edge [days after the start].",
+)
 @click.option("--all", "show_all", is_flag=True, help="Also list the dropped edges and why.")
 def edges(catalog_path, preopt_days, dv_max_mps, departure_day, show_all):
     """Print the pre-optimised edge table (paper Part IV-B) as CSV on stdout."""

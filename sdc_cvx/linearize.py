@@ -1,0 +1,252 @@
+"""Linearisation of each edge's cost and duration around a reference (paper Eq. 17, 18, 20).
+
+Units: the model works in scaled units, so every coefficient here is in km (drift
+radius offsets alpha), days (dates, durations) and m/s (costs).
+
+For edge e = i -> j with drift side and inclination fixed by the pre-optimisation:
+
+- cost ``C(a)`` is approximated on the trust interval ``[a_ref + alpha_lo, a_ref + alpha_hi]``
+  by the **maximum of two secants**, split at the cost's kink (the drift orbit at a
+  debris radius, DESIGN §7) when it lies inside the interval, else at the reference.
+  For a cost that is convex there (kinks of Eq. 13 are convex V shapes) this is exact
+  at three points and never crosses the kink with one line; the paper's single secant
+  (Eq. 18) is the special case of a split at an end.
+- duration ``T(a, t)`` (Eq. 10) is convex in ``a`` on each side of its asymptote, so
+  its secant over the alpha interval (Eq. 17-18) over-estimates it; it is linear in
+  the departure date ``t`` as long as the RAAN gap does not wrap, which the date
+  window guarantees, so ``T2`` is the exact slope at ``a_ref``.
+
+``T_L(alpha, tau) = T0 + T1 alpha + T2 tau``, ``tau = t_depart - t_ref``  (Eq. 20).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from .orbits import SECONDS_PER_DAY, wrap_angle
+from .transfer import (
+    NodeOrbits,
+    drift_rate,
+    duration_bounded_interval,
+    raan_gap,
+    transfer_duration,
+    transfer_dv,
+)
+
+KM = 1e3
+
+
+class EdgeGeometry(NamedTuple):
+    """What is fixed about each kept edge: its ends, drift side and drift inclination.
+
+    Attributes
+    ----------
+    origin, target : NodeOrbits
+        Orbits of debris i and j, arrays of shape (m,).
+    side : ndarray
+        +1 (drift faster than the target) or -1, shape (m,).
+    inc_drift : ndarray
+        Drift inclination [rad], shape (m,).
+    a_low, a_high : float
+        Drift radius bounds [m].
+    j2 : float
+    """
+
+    origin: NodeOrbits
+    target: NodeOrbits
+    side: np.ndarray
+    inc_drift: np.ndarray
+    a_low: float
+    a_high: float
+    j2: float
+
+    def cost(self, a):
+        """True cost [m/s] of each edge with drift radius ``a`` [m] (Eq. 11-13)."""
+        return transfer_dv(
+            self.origin.a, self.origin.inc, self.target.a, self.target.inc, a, self.inc_drift
+        )
+
+    def duration_days(self, a, t_days):
+        """True duration [days] of each edge with drift radius ``a`` [m] leaving at ``t_days``."""
+        seconds = transfer_duration(
+            self.origin, self.target, a, self.inc_drift, t_days * SECONDS_PER_DAY, j2=self.j2
+        )
+        return seconds / SECONDS_PER_DAY
+
+    def radius_window(self, t_days, max_days):
+        """Drift radii [m] on the edge's side whose coast from ``t_days`` lasts <= ``max_days``."""
+        return duration_bounded_interval(
+            raan_gap(self.origin, self.target, t_days * SECONDS_PER_DAY),
+            self.target.rate, self.side, self.inc_drift, max_days * SECONDS_PER_DAY,
+            self.a_low, self.a_high, j2=self.j2,
+        )  # fmt: skip
+
+    def unwrapped_date_window(self, t_days):
+        """Departure dates [days] around ``t_days`` over which the RAAN gap does not wrap.
+
+        Within it the duration is linear in the date (Eq. 10); at one end the gap
+        closes (duration 0), at the other it would need a full extra revolution.
+        """
+        gap = wrap_angle(raan_gap(self.origin, self.target, t_days * SECONDS_PER_DAY), self.side)
+        closing = (self.target.rate - self.origin.rate) * SECONDS_PER_DAY  # rad/day
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ends = np.stack([-gap / closing, (2 * np.pi * self.side - gap) / closing])
+        ends = np.where(closing == 0.0, np.array([[-np.inf], [np.inf]]), ends)
+        return t_days + ends.min(axis=0), t_days + ends.max(axis=0)
+
+
+@dataclass(frozen=True)
+class TrustRegion:
+    """Reference point and trust interval half-widths of every edge (Part IV-C).
+
+    Attributes
+    ----------
+    a_ref : ndarray
+        Reference drift radius [m].
+    t_ref : ndarray
+        Reference departure date [days].
+    alpha_km : ndarray
+        Half-width of the drift-radius interval [km].
+    tau_days : ndarray
+        Half-width of the departure-date interval [days].
+    """
+
+    a_ref: np.ndarray
+    t_ref: np.ndarray
+    alpha_km: np.ndarray
+    tau_days: np.ndarray
+
+
+@dataclass(frozen=True)
+class Coefficients:
+    """Eq. 20 coefficients and trust bounds of every edge, in scaled units.
+
+    Cost: ``C_L = max(c0[0] + c1[0] alpha, c0[1] + c1[1] alpha)`` [m/s], alpha in km.
+    Duration: ``T_L = t0 + t1 alpha + t2 (t_depart - t_ref)`` [days].
+    Bounds: ``alpha_lo <= alpha <= alpha_hi`` [km], ``depart_lo <= t_depart <= depart_hi``
+    [days]; ``available`` is False for edges with no valid interval at their reference.
+    """
+
+    a_ref: np.ndarray  # reference radius [m] actually used (clipped into the valid window)
+    c0: np.ndarray  # shape (2, m)
+    c1: np.ndarray  # shape (2, m)
+    t0: np.ndarray
+    t1: np.ndarray
+    t2: np.ndarray
+    t_ref: np.ndarray
+    alpha_lo: np.ndarray
+    alpha_hi: np.ndarray
+    depart_lo: np.ndarray
+    depart_hi: np.ndarray
+    available: np.ndarray
+
+    def cost(self, alpha_km):
+        """Linearised cost [m/s] at ``alpha_km``."""
+        return np.max(self.c0 + self.c1 * alpha_km, axis=0)
+
+    def duration(self, alpha_km, t_depart):
+        """Linearised duration [days] at ``alpha_km`` and departure date ``t_depart``."""
+        return self.t0 + self.t1 * alpha_km + self.t2 * (t_depart - self.t_ref)
+
+
+def linearize(
+    geometry: EdgeGeometry,
+    region: TrustRegion,
+    *,
+    tmax_days: float,
+    depart_range: tuple[float, float],
+) -> Coefficients:
+    """Secant coefficients of every edge on its trust region (Eq. 17, 18, 20).
+
+    Parameters
+    ----------
+    geometry : EdgeGeometry
+    region : TrustRegion
+        References and half-widths; a reference outside the valid radius window is
+        first clipped into it.
+    tmax_days : float
+        Longest useful transfer [days]: the radius interval stops where the duration
+        at ``t_ref`` reaches it, which keeps it clear of the asymptote.
+    depart_range : (float, float)
+        Earliest and latest possible departure dates of any transfer [days].
+
+    Returns
+    -------
+    Coefficients
+    """
+    t_ref = region.t_ref
+    window_lo, window_hi = geometry.radius_window(t_ref, tmax_days)
+    a_ref = np.clip(region.a_ref, window_lo, window_hi)
+    a_lo = np.maximum(window_lo, a_ref - region.alpha_km * KM)
+    a_hi = np.minimum(window_hi, a_ref + region.alpha_km * KM)
+    wrap_lo, wrap_hi = geometry.unwrapped_date_window(t_ref)
+    depart_lo = np.maximum.reduce(
+        [wrap_lo, t_ref - region.tau_days, np.full_like(t_ref, depart_range[0])]
+    )
+    depart_hi = np.minimum.reduce(
+        [wrap_hi, t_ref + region.tau_days, np.full_like(t_ref, depart_range[1])]
+    )
+    available = (
+        np.isfinite(a_ref) & (depart_lo <= depart_hi) & (t_ref >= depart_lo) & (t_ref <= depart_hi)
+    )
+
+    # fill unavailable edges with a harmless placeholder so the arithmetic stays finite
+    a_ref = np.where(available, a_ref, geometry.target.a)
+    a_lo = np.where(available, a_lo, a_ref)
+    a_hi = np.where(available, a_hi, a_ref)
+    alpha_lo, alpha_hi = (a_lo - a_ref) / KM, (a_hi - a_ref) / KM
+
+    c0, c1 = _cost_pieces(geometry, a_lo, a_ref, a_hi)
+    with np.errstate(all="ignore"):
+        t_at_lo = geometry.duration_days(a_lo, t_ref)
+        t_at_hi = geometry.duration_days(a_hi, t_ref)
+        width = alpha_hi - alpha_lo
+        t1 = np.where(width > 0, (t_at_hi - t_at_lo) / np.where(width > 0, width, 1.0), 0.0)
+        t0 = t_at_lo - t1 * alpha_lo
+        # exact date slope of Eq. 10 at a_ref: d/dt [gap(t) / (rate_d - rate_j)]
+        relative = drift_rate(a_ref, geometry.inc_drift, j2=geometry.j2) - geometry.target.rate
+        t2 = (geometry.target.rate - geometry.origin.rate) / relative
+    usable = available & np.isfinite(t0) & np.isfinite(t1) & np.isfinite(t2)
+    zero = np.zeros_like(t_ref)
+    return Coefficients(
+        a_ref=a_ref,
+        c0=np.where(usable, c0, 0.0), c1=np.where(usable, c1, 0.0),
+        t0=np.where(usable, t0, 0.0), t1=np.where(usable, t1, 0.0), t2=np.where(usable, t2, 0.0),
+        t_ref=t_ref,
+        alpha_lo=np.where(usable, alpha_lo, zero), alpha_hi=np.where(usable, alpha_hi, zero),
+        depart_lo=np.where(usable, depart_lo, depart_range[0]),
+        depart_hi=np.where(usable, depart_hi, depart_range[0]),
+        available=usable,
+    )  # fmt: skip
+
+
+def _cost_pieces(geometry: EdgeGeometry, a_lo, a_ref, a_hi):
+    """Two secants of the cost on [a_lo, split] and [split, a_hi], as (c0, c1) in m/s, km."""
+    inside = lambda a: (a > a_lo) & (a < a_hi)  # noqa: E731
+    split = np.where(
+        inside(geometry.target.a), geometry.target.a,
+        np.where(inside(geometry.origin.a), geometry.origin.a,
+                 np.where(inside(a_ref), a_ref, 0.5 * (a_lo + a_hi))),
+    )  # fmt: skip
+    points = np.stack([a_lo, split, a_hi])
+    costs = geometry.cost(points)
+    offsets = (points - a_ref) / KM
+    c0, c1 = [], []
+    for left, right in ((0, 1), (1, 2)):
+        width = offsets[right] - offsets[left]
+        slope = np.where(
+            width > 0, (costs[right] - costs[left]) / np.where(width > 0, width, 1.0), 0.0
+        )
+        c1.append(slope)
+        c0.append(costs[left] - slope * offsets[left])
+    c0, c1 = np.stack(c0), np.stack(c1)
+    # a degenerate piece (zero width) would claim a flat line through one point: use the other
+    degenerate = (offsets[1] - offsets[0] <= 0) | (offsets[2] - offsets[1] <= 0)
+    keep = np.where(offsets[1] - offsets[0] > 0, 0, 1)
+    rows = np.arange(c0.shape[1])
+    c0 = np.where(degenerate, c0[keep, rows], c0)
+    c1 = np.where(degenerate, c1[keep, rows], c1)
+    return c0, c1

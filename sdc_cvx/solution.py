@@ -1,0 +1,190 @@
+"""A plan evaluated with the true physics, and the solution returned to users.
+
+:func:`evaluate_plan` is the single place where a fixed path (debris order, drift
+orbits, earliest departure dates) is turned into dates, durations and costs with
+the nonlinear model of Part III: the sequential driver uses it for the true ΔV and
+duration of every iteration (Table 7), the re-optimisation for its objective and
+constraint, and :class:`Solution` reports its legs.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass, field
+from typing import NamedTuple
+
+import numpy as np
+import pandas as pd
+
+from .mission import Mission
+from .orbits import SECONDS_PER_DAY
+from .transfer import NodeOrbits, transfer_duration, transfer_dv
+
+
+class PlanEvaluation(NamedTuple):
+    """True dates, durations and costs of the legs of a plan (arrays of length n - 1).
+
+    Attributes
+    ----------
+    departure_day, duration_days, arrival_day : ndarray
+        Leg departure date, coast duration and arrival date [days after t0].
+    dv_mps : ndarray
+        Leg cost [m/s].
+    end_day : float
+        Arrival at the last debris plus its operations [days]: the mission duration.
+    """
+
+    departure_day: np.ndarray
+    duration_days: np.ndarray
+    arrival_day: np.ndarray
+    dv_mps: np.ndarray
+    end_day: float
+
+
+def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=0.0,
+                  not_before=None, j2) -> PlanEvaluation:  # fmt: skip
+    """Chain the legs of ``path`` through the true model (Eq. 10-13).
+
+    The vehicle is at ``path[0]`` at t = 0; each leg leaves after the operations at
+    its debris (``deorbit_days``), or at ``not_before`` if that is later (a planned
+    wait), coasts on its drift orbit until the RAANs meet, and arrives.
+
+    Parameters
+    ----------
+    orbits : NodeOrbits
+        All debris.
+    path : sequence of int
+        Debris positions in visiting order (length n).
+    a_drift, inc_drift : array_like
+        Drift radius [m] and inclination [rad] of each leg (length n - 1).
+    deorbit_days : float
+        T_deorb [days].
+    not_before : array_like, optional
+        Earliest departure date of each leg [days].
+    j2 : float
+
+    Returns
+    -------
+    PlanEvaluation
+    """
+    path = np.asarray(path, dtype=int)
+    legs = len(path) - 1
+    a_drift = np.broadcast_to(np.asarray(a_drift, dtype=float), (legs,))
+    inc_drift = np.broadcast_to(np.asarray(inc_drift, dtype=float), (legs,))
+    not_before = np.full(legs, -np.inf) if not_before is None else np.asarray(not_before, float)
+    departure, duration, arrival = np.empty(legs), np.empty(legs), np.empty(legs)
+    ready = deorbit_days  # operations at the first debris, reached at t = 0
+    for k in range(legs):
+        origin, target = orbits.take([path[k]]), orbits.take([path[k + 1]])
+        departure[k] = max(ready, not_before[k])
+        seconds = transfer_duration(
+            origin, target, a_drift[k], inc_drift[k], departure[k] * SECONDS_PER_DAY, j2=j2
+        )
+        duration[k] = seconds[0] / SECONDS_PER_DAY
+        arrival[k] = departure[k] + duration[k]
+        ready = arrival[k] + deorbit_days
+    origins, targets = orbits.take(path[:-1]), orbits.take(path[1:])
+    dv = transfer_dv(origins.a, origins.inc, targets.a, targets.inc, a_drift, inc_drift)
+    return PlanEvaluation(departure, duration, arrival, dv, float(ready))
+
+
+@dataclass(frozen=True)
+class Leg:
+    """One transfer of the solution, evaluated with the true model."""
+
+    from_id: str
+    to_id: str
+    departure_day: float
+    duration_days: float
+    drift_a_km: float
+    drift_alt_km: float
+    drift_inc_deg: float
+    side: int
+    dv_mps: float
+
+    def to_dict(self) -> dict:
+        out = asdict(self)
+        out["from"], out["to"] = out.pop("from_id"), out.pop("to_id")
+        return out
+
+
+@dataclass(frozen=True)
+class IterationRecord:
+    """One iteration of the sequential linearisation (the columns of the paper's Table 7)."""
+
+    iteration: int
+    path: tuple[str, ...]
+    dv_linearized_mps: float | None
+    dv_true_mps: float | None
+    duration_true_days: float | None
+    nodes: int | None
+    seconds: float
+    solve_seconds: float
+    alpha_km: float
+    status: str
+    note: str = ""
+
+    def to_dict(self) -> dict:
+        out = asdict(self)
+        out["path"] = list(self.path)
+        return out
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The planned mission: path, legs, totals, and how it was found.
+
+    ``legs`` come from the nonlinear re-optimisation and are re-evaluated with the
+    physics module; ``iterations`` is the history of the sequential linearisation.
+    """
+
+    path: tuple[str, ...]
+    legs: tuple[Leg, ...]
+    total_dv_mps: float
+    total_duration_days: float
+    status: str
+    backend: str
+    mission: Mission
+    iterations: tuple[IterationRecord, ...]
+    model_size: dict = field(default_factory=dict)
+    timings: dict = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
+
+    def legs_frame(self) -> pd.DataFrame:
+        """Legs as a table (km, deg, days, m/s)."""
+        return pd.DataFrame([leg.to_dict() for leg in self.legs])
+
+    def iterations_frame(self) -> pd.DataFrame:
+        """Iteration history as a table (the paper's Table 7 and more)."""
+        frame = pd.DataFrame([record.to_dict() for record in self.iterations])
+        frame["path"] = frame["path"].map(lambda p: "->".join(p))
+        return frame
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict with the documented keys of ``solution.json``."""
+        return {
+            "path": list(self.path),
+            "total_dv_mps": self.total_dv_mps,
+            "total_duration_days": self.total_duration_days,
+            "status": self.status,
+            "backend": self.backend,
+            "legs": [leg.to_dict() for leg in self.legs],
+            "iterations": [record.to_dict() for record in self.iterations],
+            "mission": self.mission.to_dict(),
+            "model_size": self.model_size,
+            "timings": self.timings,
+            "notes": list(self.notes),
+        }
+
+    def to_json(self, indent=2) -> str:
+        return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
+
+    def summary(self) -> str:
+        """A few lines for people: path, ΔV, duration, iterations."""
+        lines = [
+            f"path      {' -> '.join(self.path)}",
+            f"total dV  {self.total_dv_mps:.1f} m/s",
+            f"duration  {self.total_duration_days:.1f} days (limit {self.mission.tmax_days:g})",
+            f"status    {self.status} after {len(self.iterations)} iterations ({self.backend})",
+        ]
+        return "\n".join(lines)
