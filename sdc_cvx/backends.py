@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 import cvxpy as cp
+from cvxpy import settings as cvxpy_settings
 
 DEFAULT_BACKEND = "HIGHS"
 
@@ -167,7 +168,7 @@ def solve_milp(problem: cp.Problem, options: SolverOptions, *, warm_start=False)
     solve_seconds = float(stats.solve_time or 0.0)
     info = stats.extra_stats if options.backend == "HIGHS" else None
     status = _status(problem.status, info)
-    if status == Status.INFEASIBLE and problem.status == cp.INFEASIBLE_OR_UNBOUNDED:
+    if status == Status.INFEASIBLE and problem.status == cvxpy_settings.INFEASIBLE_OR_UNBOUNDED:
         message = "infeasible or unbounded (the model's variables are bounded: infeasible)"
     has = status.has_solution
     return SolveReport(
@@ -189,7 +190,11 @@ def _status(cvxpy_status: str, highs_info) -> Status:
     if cvxpy_status == cp.USER_LIMIT:
         feasible = highs_info is not None and getattr(highs_info, "primal_solution_status", 0) == 2
         return Status.TIME_LIMIT if feasible else Status.NO_SOLUTION
-    if cvxpy_status in (cp.INFEASIBLE, cp.INFEASIBLE_INACCURATE, cp.INFEASIBLE_OR_UNBOUNDED):
+    if cvxpy_status in (
+        cp.INFEASIBLE,
+        cp.INFEASIBLE_INACCURATE,
+        cvxpy_settings.INFEASIBLE_OR_UNBOUNDED,
+    ):
         return Status.INFEASIBLE
     if cvxpy_status in (cp.UNBOUNDED, cp.UNBOUNDED_INACCURATE):
         return Status.UNBOUNDED

@@ -37,6 +37,7 @@ from .transfer import (
 )
 
 KM = 1e3
+WRAP_MARGIN_DAYS = 1e-3
 
 
 class EdgeGeometry(NamedTuple):
@@ -95,7 +96,10 @@ class EdgeGeometry(NamedTuple):
         with np.errstate(divide="ignore", invalid="ignore"):
             ends = np.stack([-gap / closing, (2 * np.pi * self.side - gap) / closing])
         ends = np.where(closing == 0.0, np.array([[-np.inf], [np.inf]]), ends)
-        return t_days + ends.min(axis=0), t_days + ends.max(axis=0)
+        # stay a hair inside: exactly at an end, rounding may wrap the gap a full turn
+        return t_days + ends.min(axis=0) + WRAP_MARGIN_DAYS, t_days + ends.max(
+            axis=0
+        ) - WRAP_MARGIN_DAYS
 
 
 @dataclass(frozen=True)
@@ -189,9 +193,9 @@ def linearize(
     depart_hi = np.minimum.reduce(
         [wrap_hi, t_ref + region.tau_days, np.full_like(t_ref, depart_range[1])]
     )
-    available = (
-        np.isfinite(a_ref) & (depart_lo <= depart_hi) & (t_ref >= depart_lo) & (t_ref <= depart_hi)
-    )
+    # the date window holds t_ref unless the mission's departure range cuts it off; the
+    # date term is exact across the whole unwrapped window, so only emptiness matters
+    available = np.isfinite(a_ref) & (depart_lo <= depart_hi)
 
     # fill unavailable edges with a harmless placeholder so the arithmetic stays finite
     a_ref = np.where(available, a_ref, geometry.target.a)

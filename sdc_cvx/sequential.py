@@ -113,7 +113,8 @@ class _Driver:
         self.progress = progress or (lambda record: None)
         self.timings = {}
         start = time.perf_counter()
-        self.table = preoptimize(catalog, mission)
+        # the first transfer leaves after the operations at the first debris
+        self.table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
         self.timings["preoptimize_s"] = time.perf_counter() - start
         self.kept = self.table.kept
         if len(self.kept) < mission.n - 1:
