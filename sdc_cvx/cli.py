@@ -3,14 +3,20 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 import click
 
+from .backends import SolverOptions
 from .catalog import Catalog, CatalogError
 from .edges import preoptimize
 from .mission import Mission, MissionError
+from .output import new_run_folder, write_run
+from .sequential import MissionInfeasible, SolverFailure, solve
 
 INPUT_ERROR = 2
+INFEASIBLE = 3
+SOLVER_FAILED = 4
 
 
 def fail(message: str, code: int = INPUT_ERROR):
@@ -70,3 +76,61 @@ def edges(catalog_path, preopt_days, dv_max_mps, departure_day, show_all):
     frame = table.frame if show_all else table.kept
     click.echo(frame.to_csv(index=False, float_format="%.6g"), nl=False)
     click.echo(table.summary(), err=True)
+
+
+def print_iteration(record):
+    """One progress line per iteration (to stderr)."""
+    dv_lin = "-" if record.dv_linearized_mps is None else f"{record.dv_linearized_mps:8.1f}"
+    dv_true = "-" if record.dv_true_mps is None else f"{record.dv_true_mps:8.1f}"
+    days = "-" if record.duration_true_days is None else f"{record.duration_true_days:7.1f}"
+    click.echo(
+        f"  it {record.iteration:2d}  {'->'.join(record.path) or '(none)':<28} "
+        f"dV lin {dv_lin}  true {dv_true} m/s  {days} d  nodes {record.nodes}  "
+        f"{record.seconds:6.2f} s  {record.note}",
+        err=True,
+    )
+
+
+@main.command()
+@catalog_option
+@click.option("--n", type=int, default=None, help="Number of debris to remove [5].")
+@click.option("--tmax-days", type=float, default=None, help="Mission duration limit [365.25 days].")
+@click.option("--deorbit-days", type=float, default=None, help="Operations time per debris [0].")
+@click.option("--preopt-days", type=float, default=None, help="Pre-optimisation bound T0 [61].")
+@click.option("--backend", default="HIGHS", show_default=True, help="MILP backend (CVXPY name).")
+@click.option(
+    "--time-limit", "time_limit_s", type=float, default=None, help="Time limit per MILP solve [s]."
+)
+@click.option(
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Output folder [a new sdc_run_* folder here].",
+)
+@click.option("--quiet", is_flag=True, help="No progress, only the summary.")
+def run(catalog_path, n, tmax_days, deorbit_days, preopt_days, backend, time_limit_s, out_dir,
+        quiet):  # fmt: skip
+    """Select, order and plan the transfers; write solution.json and tables to a run folder."""
+    catalog = load_catalog(catalog_path)
+    mission = make_mission(n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
+                           preopt_days=preopt_days)  # fmt: skip
+    try:
+        solver = SolverOptions(backend=backend, time_limit_s=time_limit_s)
+        mission.check_candidates(len(catalog))
+    except ValueError as err:
+        fail(str(err))
+    if not quiet:
+        click.echo(f"{catalog!r}: choosing {mission.n}, T_max {mission.tmax_days:g} days", err=True)
+    try:
+        solution = solve(
+            catalog, mission, solver=solver, progress=None if quiet else print_iteration
+        )
+    except MissionInfeasible as err:
+        fail(f"infeasible mission: {err}", INFEASIBLE)
+    except SolverFailure as err:
+        fail(f"solver failure: {err}", SOLVER_FAILED)
+    folder = Path(out_dir) if out_dir else new_run_folder()
+    write_run(folder, solution, preoptimize(catalog, mission, departure_day=mission.deorbit_days))
+    click.echo(solution.summary())
+    click.echo(f"results   {folder}/solution.json")

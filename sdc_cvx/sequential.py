@@ -59,6 +59,9 @@ class SequentialSettings:
         How many times the side/inclination check may resume the iterations.
     max_confirmations : int
         How many times a re-optimised point is confirmed by one more MILP.
+    initial_retries : int
+        How many times the first MILP is retried with halved radius intervals before
+        the mission is declared infeasible.
     """
 
     alpha_km: float = 50.0
@@ -69,6 +72,7 @@ class SequentialSettings:
     max_iterations: int = 40
     max_assumption_rounds: int = 2
     max_confirmations: int = 3
+    initial_retries: int = 3
 
 
 def edge_geometry(table: EdgeTable) -> EdgeGeometry:
@@ -140,6 +144,7 @@ class _Driver:
         )
         self.depart_range = (mission.deorbit_days, mission.tmax_days - mission.deorbit_days)
         self.history: list[IterationRecord] = []
+        self.initial_retries = 0
         self.notes: list[str] = []
 
     # -- one iteration -------------------------------------------------------------------
@@ -193,10 +198,20 @@ class _Driver:
             hint = " (raise the time limit)" if report.status == Status.NO_SOLUTION else ""
             raise SolverFailure(f"{report.backend}: {report.status.value}: {report.message}{hint}")
         if not any(record.path for record in self.history):
-            raise MissionInfeasible(_relax_message(self.mission, self.table.summary()))
+            # over-estimated durations (wide secants) can make a feasible mission look
+            # infeasible: narrow the radius intervals a few times before concluding
+            if self.initial_retries == self.settings.initial_retries:
+                raise MissionInfeasible(_relax_message(self.mission, self.table.summary()))
+            self.initial_retries += 1
+            self.region = replace(self.region, alpha_km=self.region.alpha_km * self.settings.shrink)
+            self.record(report, [], None, start, "no path yet: radius intervals narrowed")
+            return None
         # infeasible around the new references: the secants over-estimate too much; narrow them
-        self.region = replace(self.region, alpha_km=self.region.alpha_km * self.settings.shrink,
-                              tau_days=self.region.tau_days * self.settings.shrink)  # fmt: skip
+        self.region = replace(
+            self.region,
+            alpha_km=self.region.alpha_km * self.settings.shrink,
+            tau_days=self.region.tau_days * self.settings.shrink,
+        )
         self.record(report, [], None, start, "infeasible linearisation: intervals narrowed")
         return None
 
@@ -405,8 +420,9 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
 def _relax_message(mission: Mission, edges_summary: str) -> str:
     return (
-        f"no mission visits n = {mission.n} debris within T_max = {mission.tmax_days:g} days "
-        f"with the kept edges ({edges_summary}). Relax one of: a longer mission (tmax_days), "
+        f"no path of n = {mission.n} debris ends within T_max = {mission.tmax_days:g} days in "
+        f"the linearised model over the kept edges ({edges_summary}). Relax one of: "
+        f"a longer mission (tmax_days), "
         f"a longer pre-optimisation bound (preopt_days = {mission.preopt_days:g}), a higher "
         f"dv_max_mps ({mission.dv_max_mps:g}), a wider drift altitude band "
         f"{mission.drift_altitude_km}, fewer debris (n), or shorter operations (deorbit_days)"

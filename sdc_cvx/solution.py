@@ -184,7 +184,7 @@ class Solution:
         lines = [
             f"path      {' -> '.join(self.path)}",
             f"total dV  {self.total_dv_mps:.1f} m/s",
-            f"duration  {self.total_duration_days:.1f} days (limit {self.mission.tmax_days:g})",
+            f"duration  {self.total_duration_days:.2f} days (limit {self.mission.tmax_days:g})",
             f"status    {self.status} after {len(self.iterations)} iterations ({self.backend})",
         ]
         return "\n".join(lines)

@@ -1,0 +1,61 @@
+"""Writing a run's results to a folder, atomically (temp file then rename)."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from datetime import datetime
+from pathlib import Path
+
+from .edges import EdgeTable
+from .solution import Solution
+
+
+def write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` so that readers never see a truncated file."""
+    path = Path(path)
+    handle, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as stream:
+            stream.write(text)
+        os.replace(temp, path)
+    except BaseException:
+        Path(temp).unlink(missing_ok=True)
+        raise
+
+
+def new_run_folder(parent: Path | str = ".") -> Path:
+    """A new, empty folder ``sdc_run_YYYYmmdd-HHMMSS[-k]`` under ``parent``."""
+    stamp = datetime.now().strftime("%Y%m%d-%H%M%S")
+    for k in range(1000):
+        folder = Path(parent) / (f"sdc_run_{stamp}" + (f"-{k}" if k else ""))
+        try:
+            folder.mkdir(parents=True)
+            return folder
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"cannot create a new run folder under {parent}")
+
+
+def write_run(folder: Path | str, solution: Solution, edges: EdgeTable | None = None) -> list[Path]:
+    """Write ``solution.json``, ``legs.csv``, ``iterations.csv`` (and ``edges.csv``) to ``folder``.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    files = {
+        "legs.csv": solution.legs_frame().to_csv(index=False),
+        "iterations.csv": solution.iterations_frame().to_csv(index=False),
+    }
+    if edges is not None:
+        files["edges.csv"] = edges.frame.to_csv(index=False)
+    files["solution.json"] = solution.to_json()  # last: its presence means the run is complete
+    written = []
+    for name, text in files.items():
+        write_atomic(folder / name, text)
+        written.append(folder / name)
+    return written
