@@ -183,6 +183,7 @@ class _Driver:
             nodes=report.nodes,
             seconds=time.perf_counter() - start,
             solve_seconds=report.solve_seconds,
+            cvxpy_seconds=report.overhead_seconds,
             alpha_km=float(np.max(self.region.alpha_km)),
             status=report.status.value,
             note=note,

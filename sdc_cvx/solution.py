@@ -120,6 +120,7 @@ class IterationRecord:
     nodes: int | None
     seconds: float
     solve_seconds: float
+    cvxpy_seconds: float
     alpha_km: float
     status: str
     note: str = ""
