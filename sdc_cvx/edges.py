@@ -78,7 +78,9 @@ class EdgeTable:
         )
 
 
-def preoptimize(catalog: Catalog, mission: Mission, departure_day=0.0) -> EdgeTable:
+def preoptimize(
+    catalog: Catalog, mission: Mission, departure_day=0.0, *, sides=(1, -1)
+) -> EdgeTable:
     """Pre-optimise every ordered pair of the catalog (Part IV-B).
 
     Parameters
@@ -91,6 +93,8 @@ def preoptimize(catalog: Catalog, mission: Mission, departure_day=0.0) -> EdgeTa
     departure_day : float or array_like
         Reference departure date of each edge [days after t0]: a scalar, or an array
         of shape (N, N) indexed [i, j].
+    sides : tuple of {1, -1}
+        Sides of the duration asymptote considered (default both: the cheaper wins).
 
     Returns
     -------
@@ -109,6 +113,7 @@ def preoptimize(catalog: Catalog, mission: Mission, departure_day=0.0) -> EdgeTa
         a_low,
         a_high,
         inclination=mission.drift_inclination,
+        sides=tuple(float(side) for side in sides),
         j2=mission.j2,
     )
     status = np.where(
@@ -134,3 +139,53 @@ def preoptimize(catalog: Catalog, mission: Mission, departure_day=0.0) -> EdgeTa
         }
     )
     return EdgeTable(frame, catalog, mission)
+
+
+def preoptimize_windows(
+    catalog: Catalog, mission: Mission, window_bounds, *, reference_days=None, sides=(1, -1)
+) -> pd.DataFrame:  # fmt: skip
+    """Pre-optimised copies of every edge, per departure-date window and side (time-expanded).
+
+    With J2 rates that differ, the right drift orbit of an edge depends on when it is
+    flown, and a single reference date per edge (Part IV-B) misjudges edges flown
+    late in the mission.  Each window ``[lo, hi)`` gets its own copy of every edge,
+    pre-optimised at the window's centre, and one copy per side of the duration
+    asymptote where both are feasible: the model then chooses an edge, its window
+    and its side, instead of fixing the side at initialisation (Part IV-B) and only
+    checking it at the end.  One window and the cheaper side is the paper's method.
+
+    Parameters
+    ----------
+    catalog, mission : Catalog, Mission
+    window_bounds : array_like
+        K + 1 increasing dates [days]: window k is ``[bounds[k], bounds[k+1]]``.
+    reference_days : float, optional
+        Duration allowed to the reference transfer of a kept copy [days]; the copy is
+        kept if it is feasible within ``mission.preopt_days`` (T0) and under ΔVmax.
+        Default: T0.
+    sides : tuple of {1, -1}
+        Sides to make copies for; ``(1, -1)`` makes one copy per feasible side.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The kept copies: the columns of :class:`EdgeTable` plus ``window``,
+        ``window_lo``, ``window_hi`` (days).
+    """
+    bounds = np.asarray(window_bounds, dtype=float)
+    reference = mission if reference_days is None else mission.replace(
+        preopt_days=min(reference_days, mission.preopt_days)
+    )  # fmt: skip
+    frames = []
+    for k, (lo, hi) in enumerate(zip(bounds[:-1], bounds[1:], strict=True)):
+        center = 0.5 * (lo + hi)
+        for side in sides:
+            kept = preoptimize(catalog, mission, departure_day=center, sides=(side,)).frame
+            ref = preoptimize(catalog, reference, departure_day=center, sides=(side,)).frame
+            use_ref = ref["status"] == KEPT
+            copies = kept.where(~use_ref, ref)  # a faster reference where one exists
+            copies = copies[kept["status"] == KEPT].assign(window=k, window_lo=lo, window_hi=hi)
+            frames.append(copies)
+    frame = pd.concat(frames, ignore_index=True)
+    frame[["i", "j", "side", "window"]] = frame[["i", "j", "side", "window"]].astype(int)
+    return frame

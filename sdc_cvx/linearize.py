@@ -174,8 +174,9 @@ def linearize(
     tmax_days : float
         Longest useful transfer [days]: the radius interval stops where the duration
         at ``t_ref`` reaches it, which keeps it clear of the asymptote.
-    depart_range : (float, float)
-        Earliest and latest possible departure dates of any transfer [days].
+    depart_range : (array_like, array_like)
+        Earliest and latest departure dates of each edge [days] (scalars or arrays):
+        the mission's range, or an edge copy's date window.
 
     Returns
     -------
@@ -187,12 +188,10 @@ def linearize(
     a_lo = np.maximum(window_lo, a_ref - region.alpha_km * KM)
     a_hi = np.minimum(window_hi, a_ref + region.alpha_km * KM)
     wrap_lo, wrap_hi = geometry.unwrapped_date_window(t_ref)
-    depart_lo = np.maximum.reduce(
-        [wrap_lo, t_ref - region.tau_days, np.full_like(t_ref, depart_range[0])]
-    )
-    depart_hi = np.minimum.reduce(
-        [wrap_hi, t_ref + region.tau_days, np.full_like(t_ref, depart_range[1])]
-    )
+    range_lo = np.broadcast_to(np.asarray(depart_range[0], dtype=float), t_ref.shape)
+    range_hi = np.broadcast_to(np.asarray(depart_range[1], dtype=float), t_ref.shape)
+    depart_lo = np.maximum.reduce([wrap_lo, t_ref - region.tau_days, range_lo])
+    depart_hi = np.minimum.reduce([wrap_hi, t_ref + region.tau_days, range_hi])
     # the date window holds t_ref unless the mission's departure range cuts it off; the
     # date term is exact across the whole unwrapped window, so only emptiness matters
     available = np.isfinite(a_ref) & (depart_lo <= depart_hi)
@@ -221,8 +220,8 @@ def linearize(
         t0=np.where(usable, t0, 0.0), t1=np.where(usable, t1, 0.0), t2=np.where(usable, t2, 0.0),
         t_ref=t_ref,
         alpha_lo=np.where(usable, alpha_lo, zero), alpha_hi=np.where(usable, alpha_hi, zero),
-        depart_lo=np.where(usable, depart_lo, depart_range[0]),
-        depart_hi=np.where(usable, depart_hi, depart_range[0]),
+        depart_lo=np.where(usable, depart_lo, range_lo),
+        depart_hi=np.where(usable, depart_hi, range_lo),
         available=usable,
     )  # fmt: skip
 

@@ -1,9 +1,18 @@
 """Nonlinear re-optimisation of a fixed path in the true model (paper Part IV-D).
 
-With the debris order fixed, the drift radii are optimised with the true cost and
-duration (Eq. 10-13) so that the mission ends by T_max.  Sides and inclinations
-stay as the sequential linearisation left them; each radius stays strictly on its
-side of the duration asymptote and inside the altitude band.
+With the debris order fixed, the drift orbits are optimised with the true cost and
+duration (Eq. 10-13) so that the mission ends by T_max.
+
+The true end date is not smooth: when a leg arrives just after the RAAN gap of the
+next leg has closed, that gap wraps to a full turn and the mission jumps by years.
+A gradient method stepping across such a cliff fails, so the main method is a
+Lagrangian forward pass: for a price ``lam`` on time [m/s per day], each leg in turn,
+departing when the previous one arrives, minimises ``dV + lam * T`` over its feasible
+drift radii, on either side of its asymptote and with its allowed inclinations (a
+robust bounded 1-D search, :func:`~sdc_cvx.transfer.minimize_on_interval`).  The end
+date falls as ``lam`` rises; bisection finds the cheapest plan that ends by T_max.
+SLSQP then polishes the best plan with sides and inclinations fixed, kept only if it
+is feasible and cheaper.
 """
 
 from __future__ import annotations
@@ -13,18 +22,30 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import minimize
 
-from .orbits import circular_a_for_raan_rate
+from .orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
 from .solution import PlanEvaluation, evaluate_plan
-from .transfer import NodeOrbits, drift_rate
+from .transfer import (
+    NodeOrbits,
+    drift_inclination,
+    drift_rate,
+    duration_bounded_interval,
+    minimize_on_interval,
+    raan_gap,
+    transfer_duration,
+    transfer_dv,
+)
 
 KM = 1e3
 ASYMPTOTE_MARGIN = 1e-6  # relative distance kept from the asymptote
+BISECTION_STEPS = 25
 
 
 class Reoptimized(NamedTuple):
-    """Outcome of the re-optimisation."""
+    """Outcome of the re-optimisation (arrays per leg)."""
 
     a_drift: np.ndarray
+    inc_drift: np.ndarray
+    side: np.ndarray
     evaluation: PlanEvaluation
     improved_by_mps: float
     message: str
@@ -41,8 +62,56 @@ def side_bounds(orbits: NodeOrbits, path, side, inc_drift, a_low, a_high, *, j2)
     return lo, hi
 
 
+def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, a_low, a_high,
+                 inclination, j2):  # fmt: skip
+    """Legs chosen one after the other, each minimising ``dV + price * T`` [m/s, m/s/day].
+
+    Each leg leaves when the previous one has arrived (plus the operations) and
+    considers both sides of its asymptote with the allowed inclinations at once.
+
+    Returns
+    -------
+    a_drift, inc_drift, side : ndarray
+        Per leg; ``nan`` radius when a leg cannot reach its target before T_max.
+    """
+    legs = len(path) - 1
+    a_out, inc_out, side_out = np.full(legs, np.nan), np.zeros(legs), np.zeros(legs)
+    ready = deorbit_days
+    for k in range(legs):
+        origin, target = orbits.take([path[k]]), orbits.take([path[k + 1]])
+        remaining = tmax_days - deorbit_days - ready
+        if remaining <= 0:
+            break
+        sides = np.array([1.0, -1.0] if inclination == "table3" else [1.0, 1.0, -1.0, -1.0])
+        incs = (
+            drift_inclination(origin.inc, target.inc, sides)
+            if inclination == "table3"
+            else np.concatenate([origin.inc, target.inc, origin.inc, target.inc])
+        )
+        t_depart = ready * SECONDS_PER_DAY
+        gap = raan_gap(origin, target, t_depart)
+        lo, hi = duration_bounded_interval(
+            gap, target.rate, sides, incs, remaining * SECONDS_PER_DAY, a_low, a_high, j2=j2
+        )
+
+        def cost(a, origin=origin, target=target, incs=incs, t_depart=t_depart):
+            dv = transfer_dv(origin.a, origin.inc, target.a, target.inc, a, incs[:, None])
+            seconds = transfer_duration(origin, target, a, incs[:, None], t_depart, j2=j2)
+            return dv + price * seconds / SECONDS_PER_DAY
+
+        kinks = np.broadcast_to(np.array([origin.a[0], target.a[0]]), (len(sides), 2))
+        a_best, f_best = minimize_on_interval(cost, lo, hi, kinks)
+        pick = int(np.argmin(f_best))
+        if not np.isfinite(f_best[pick]):
+            break
+        a_out[k], inc_out[k], side_out[k] = a_best[pick], incs[pick], sides[pick]
+        seconds = transfer_duration(origin, target, a_out[k], inc_out[k], t_depart, j2=j2)[0]
+        ready += seconds / SECONDS_PER_DAY + deorbit_days
+    return a_out, inc_out, side_out
+
+
 def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days, deorbit_days,
-               a_low, a_high, j2, not_before=None) -> Reoptimized:  # fmt: skip
+               a_low, a_high, j2, inclination="table3") -> Reoptimized:  # fmt: skip
     """Minimise the true total ΔV of a fixed path subject to the true end date <= T_max.
 
     Parameters
@@ -50,48 +119,91 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
     orbits : NodeOrbits
     path : sequence of int
         Debris positions in visiting order.
-    side, inc_drift : array_like
-        Side (+1/-1) and drift inclination [rad] of each leg.
-    a_start : array_like
-        Starting drift radii [m] (the last linearised solution).
+    side, inc_drift, a_start : array_like
+        Side (+1/-1), drift inclination [rad] and radius [m] of each leg in the last
+        linearised solution (the starting point, kept if nothing better is found).
     tmax_days, deorbit_days : float
     a_low, a_high : float
         Drift radius bounds [m].
-    not_before : array_like, optional
-        Planned earliest departures [days] (waits chosen by the linear model).
+    inclination : {"table3", "free"}
+        Drift inclinations the forward pass may use.
 
     Returns
     -------
     Reoptimized
-        The better of the start and the optimiser's point among those that meet T_max.
+        The cheapest plan found that ends by T_max (or the start if none does).
     """
-    lo, hi = side_bounds(
-        orbits, path, np.asarray(side), np.asarray(inc_drift), a_low, a_high, j2=j2
+    kwargs = dict(tmax_days=tmax_days, deorbit_days=deorbit_days, a_low=a_low, a_high=a_high, j2=j2)
+
+    def plan(a, inc):
+        return evaluate_plan(orbits, path, a, inc, deorbit_days=deorbit_days, j2=j2)
+
+    def feasible(evaluation):
+        return np.isfinite(evaluation.end_day) and evaluation.end_day <= tmax_days + 1e-6
+
+    side, inc_drift = np.asarray(side, dtype=float), np.asarray(inc_drift, dtype=float)
+    start = np.asarray(a_start, dtype=float)
+    candidates = [(start, inc_drift, side, "linear solution")]
+
+    # Lagrangian forward pass, bisection on the price of time
+    low_price, high_price = 0.0, 1.0
+    plans = {}
+
+    def attempt(price):
+        a, inc, sides = forward_pass(orbits, path, price, inclination=inclination, **kwargs)
+        ok = np.all(np.isfinite(a)) and feasible(plan(a, inc))
+        plans[price] = (a, inc, sides, ok)
+        return ok
+
+    if not attempt(low_price):
+        while not attempt(high_price) and high_price < 1e6:
+            low_price, high_price = high_price, 10 * high_price
+        if plans[high_price][3]:
+            for _ in range(BISECTION_STEPS):
+                middle = 0.5 * (low_price + high_price)
+                if attempt(middle):
+                    high_price = middle
+                else:
+                    low_price = middle
+    for price, (a, inc, sides, ok) in plans.items():
+        if ok:
+            candidates.append((a, inc, sides, f"forward pass at {price:.4g} m/s per day"))
+
+    best = min(
+        (c for c in candidates if feasible(plan(c[0], c[1]))),
+        key=lambda c: plan(c[0], c[1]).dv_mps.sum(),
+        default=candidates[0],
     )
-    start = np.clip(np.asarray(a_start, dtype=float), lo, hi)
+    polished = _polish(orbits, path, best, plan, feasible, tmax_days, a_low, a_high, j2)
+    if polished is not None:
+        best = polished
+    a, inc, sides, message = best
+    final, initial = plan(a, inc), plan(start, inc_drift)
+    return Reoptimized(
+        a, inc, sides, final, float(initial.dv_mps.sum() - final.dv_mps.sum()), message
+    )
 
-    def plan(x_km):
-        return evaluate_plan(orbits, path, x_km * KM, inc_drift, deorbit_days=deorbit_days,
-                             not_before=not_before, j2=j2)  # fmt: skip
 
-    def total_dv(x_km):
-        return float(plan(x_km).dv_mps.sum())
+def _polish(orbits, path, candidate, plan, feasible, tmax_days, a_low, a_high, j2):
+    """SLSQP on the radii with sides and inclinations fixed; None unless better and feasible."""
+    a, inc, sides, message = candidate
+    lo, hi = side_bounds(orbits, path, sides, inc, a_low, a_high, j2=j2)
+    x0 = np.clip(a, lo, hi) / KM
 
-    def slack_days(x_km):
-        end = plan(x_km).end_day
+    def total(x):
+        return float(plan(x * KM, inc).dv_mps.sum())
+
+    def slack(x):
+        end = plan(x * KM, inc).end_day
         return tmax_days - end if np.isfinite(end) else -1e6
 
-    x0 = start / KM
+    if not feasible(plan(x0 * KM, inc)):
+        return None
     result = minimize(
-        total_dv, x0, method="SLSQP", bounds=list(zip(lo / KM, hi / KM, strict=True)),
-        constraints=[{"type": "ineq", "fun": slack_days}],
-        options={"maxiter": 200, "ftol": 1e-9},
+        total, x0, method="SLSQP", bounds=list(zip(lo / KM, hi / KM, strict=True)),
+        constraints=[{"type": "ineq", "fun": slack}], options={"maxiter": 200, "ftol": 1e-9},
     )  # fmt: skip
-    candidates = [(x0, "start")]
-    if np.all(np.isfinite(result.x)):
-        candidates.append((np.clip(result.x, lo / KM, hi / KM), f"SLSQP: {result.message}"))
-    feasible = [(total_dv(x), x, why) for x, why in candidates if slack_days(x) >= -1e-6]
-    if not feasible:  # neither meets T_max: report the start as is
-        return Reoptimized(start, plan(x0), 0.0, "no point meets T_max; kept the linear solution")
-    best_dv, best_x, why = min(feasible, key=lambda item: item[0])
-    return Reoptimized(best_x * KM, plan(best_x), total_dv(x0) - best_dv, why)
+    x = np.clip(result.x, lo / KM, hi / KM)
+    if np.all(np.isfinite(x)) and feasible(plan(x * KM, inc)) and total(x) < total(x0) - 1e-6:
+        return x * KM, inc, sides, f"{message}, polished by SLSQP"
+    return None

@@ -1,13 +1,18 @@
 """Sequential linearisation to convergence (paper Part IV-C, Table 7), then re-optimisation.
 
-Iteration k linearises every kept edge around its reference (drift radius, departure
-date) within trust intervals, solves the MILP, evaluates the chosen path with the true
-model, and moves the references of the chosen edges to the solution.  Phase 1 keeps
-the intervals wide while the path changes; phase 2 halves them once it is stable
-until the true ΔV stops moving; a path change restores them.  At the end each leg's
-side and inclination are checked against the cheapest alternative at its date and
-allotted time, and the iterations resume with the better assumption if one is found.
-The fixed path is finally re-optimised in the true model (Part IV-D).
+Every kept edge is replicated over departure-date windows (one per leg by default,
+:func:`~sdc_cvx.edges.preoptimize_windows`), each copy with its own reference, so the
+MILP chooses an edge together with when it is flown.  Iteration k linearises every
+copy around its reference (drift radius, departure date) within trust intervals,
+solves the MILP, evaluates the chosen path with the true model, and moves the chosen
+copies' references to the solution.  Phase 1 keeps the intervals wide while the path
+changes; phase 2 halves the chosen copies' intervals once it is stable, until the
+true ΔV stops moving; a new path restores them.  A step whose true plan breaks T_max
+is rejected.  Once stable, each leg's side and inclination are checked against the
+cheapest alternative at its date and time (plus the mission's slack), the fixed path
+is re-optimised in the true model (Part IV-D), and one more MILP around that point
+confirms the path or resumes from another.  The cheapest re-optimised plan that ends
+by T_max is the answer.
 """
 
 from __future__ import annotations
@@ -17,10 +22,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
+import pandas as pd
 
 from .backends import SolveReport, SolverOptions, Status, solve_milp
 from .catalog import Catalog
-from .edges import EdgeTable, drift_radius_bounds, node_orbits, preoptimize
+from .edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .mission import Mission
 from .model import ModelSize, PathModel
@@ -62,6 +68,10 @@ class SequentialSettings:
     initial_retries : int
         How many times the first MILP is retried with halved radius intervals before
         the mission is declared infeasible.
+    date_windows : int, optional
+        Number of departure-date windows over which every edge is replicated, each with
+        its own reference (:func:`~sdc_cvx.edges.preoptimize_windows`); default n - 1,
+        one per leg.  1 is the paper's single reference per edge.
     """
 
     alpha_km: float = 50.0
@@ -73,21 +83,21 @@ class SequentialSettings:
     max_assumption_rounds: int = 2
     max_confirmations: int = 3
     initial_retries: int = 3
+    date_windows: int | None = None
 
 
-def edge_geometry(table: EdgeTable) -> EdgeGeometry:
-    """Fixed data of the kept edges of ``table``: ends, pre-optimised side and inclination."""
-    kept = table.kept
-    orbits = node_orbits(table.catalog, table.mission)
-    a_low, a_high = drift_radius_bounds(table.mission)
+def edge_geometry(edges: pd.DataFrame, catalog: Catalog, mission: Mission) -> EdgeGeometry:
+    """Fixed data of the edges in ``edges`` (rows with ``i, j, side, drift_inc_deg``)."""
+    orbits = node_orbits(catalog, mission)
+    a_low, a_high = drift_radius_bounds(mission)
     return EdgeGeometry(
-        origin=orbits.take(kept["i"].to_numpy()),
-        target=orbits.take(kept["j"].to_numpy()),
-        side=kept["side"].to_numpy(dtype=float),
-        inc_drift=np.deg2rad(kept["drift_inc_deg"].to_numpy()),
+        origin=orbits.take(edges["i"].to_numpy()),
+        target=orbits.take(edges["j"].to_numpy()),
+        side=edges["side"].to_numpy(dtype=float),
+        inc_drift=np.deg2rad(edges["drift_inc_deg"].to_numpy(dtype=float)),
         a_low=a_low,
         a_high=a_high,
-        j2=table.mission.j2,
+        j2=mission.j2,
     )
 
 
@@ -116,15 +126,22 @@ class _Driver:
         self.catalog, self.mission, self.solver, self.settings = catalog, mission, solver, settings
         self.progress = progress or (lambda record: None)
         self.timings = {}
+        self.depart_range = (mission.deorbit_days, mission.tmax_days - mission.deorbit_days)
         start = time.perf_counter()
         # the first transfer leaves after the operations at the first debris
         self.table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+        # Reference transfers take 2/3 of a leg's fair share of the mission (the paper's
+        # T0 = 2 months for 4 legs in a year, Part IV-B), or T0 if shorter: references
+        # that each use the whole mission would make the first MILP infeasible.
+        share = (mission.tmax_days - mission.n * mission.deorbit_days) / (mission.n - 1)
+        windows = settings.date_windows or mission.n - 1
+        bounds = np.linspace(*self.depart_range, windows + 1)
+        self.kept = preoptimize_windows(catalog, mission, bounds, reference_days=2 / 3 * share)
         self.timings["preoptimize_s"] = time.perf_counter() - start
-        self.kept = self.table.kept
-        if len(self.kept) < mission.n - 1:
+        if self.kept[["i", "j"]].drop_duplicates().shape[0] < mission.n - 1:
             raise MissionInfeasible(_relax_message(mission, self.table.summary()))
         self.orbits = node_orbits(catalog, mission)
-        self.geometry = edge_geometry(self.table)
+        self.geometry = edge_geometry(self.kept, catalog, mission)
         start = time.perf_counter()
         self.model = PathModel(
             len(catalog), self.kept["i"].to_numpy(), self.kept["j"].to_numpy(), n=mission.n,
@@ -134,17 +151,19 @@ class _Driver:
         )  # fmt: skip
         self.timings["build_s"] = time.perf_counter() - start
         m = len(self.kept)
+        self.windows = (self.kept["window_lo"].to_numpy(), self.kept["window_hi"].to_numpy())
         self.alpha0 = settings.alpha_km
         self.tau0 = settings.tau_days if settings.tau_days is not None else mission.tmax_days
         self.region = TrustRegion(
-            a_ref=self.kept["drift_a_km"].to_numpy() * 1e3,
+            a_ref=self.kept["drift_a_km"].to_numpy(dtype=float) * 1e3,
             t_ref=self.kept["departure_day"].to_numpy(dtype=float),
             alpha_km=np.full(m, self.alpha0),
             tau_days=np.full(m, self.tau0),
         )
-        self.depart_range = (mission.deorbit_days, mission.tmax_days - mission.deorbit_days)
+        self.visited_paths: set[tuple[int, ...]] = set()
         self.history: list[IterationRecord] = []
         self.initial_retries = 0
+        self.best = None  # cheapest re-optimised plan that ends by T_max: (path, legs, final)
         self.notes: list[str] = []
 
     # -- one iteration -------------------------------------------------------------------
@@ -152,7 +171,7 @@ class _Driver:
         k = len(self.history)
         start = time.perf_counter()
         coefficients = linearize(self.geometry, self.region, tmax_days=self.mission.tmax_days,
-                                 depart_range=self.depart_range)  # fmt: skip
+                                 depart_range=self.windows)  # fmt: skip
         self.model.update(coefficients)
         report = solve_milp(self.model.problem, self.solver, warm_start=k > 0)
         if k == 0:
@@ -208,38 +227,38 @@ class _Driver:
             self.record(report, [], None, start, "no path yet: radius intervals narrowed")
             return None
         # infeasible around the new references: the secants over-estimate too much; narrow them
-        self.region = replace(
-            self.region,
-            alpha_km=self.region.alpha_km * self.settings.shrink,
-            tau_days=self.region.tau_days * self.settings.shrink,
-        )
+        self.narrow(np.arange(len(self.kept)), dates=False)
         self.record(report, [], None, start, "infeasible linearisation: intervals narrowed")
         return None
 
     # -- references and intervals ----------------------------------------------------------
     def move_references(self, path, legs, a_legs, evaluation: PlanEvaluation, path_changed: bool):
-        """Move the references to the solution and update the trust intervals.
+        """Move the chosen edges' references to the solution; update the trust intervals.
 
-        References of the chosen edges go to the solution's radii; every edge leaving a
-        visited debris gets that debris' true departure date.  A new path restores the
-        wide intervals (phase 1); a stable path halves them (phase 2, Part IV-C).
+        A chosen edge's reference becomes the solution's radius and its true departure
+        date (kept inside its date window); other edges keep theirs.  A new path
+        restores the wide intervals (phase 1); a stable path halves them (phase 2).
         """
         a_ref, t_ref = self.region.a_ref.copy(), self.region.t_ref.copy()
         a_ref[legs] = a_legs
-        departure_from = dict(zip(path[:-1], evaluation.departure_day, strict=True))
-        departure_from[path[-1]] = evaluation.end_day
-        origins = self.kept["i"].to_numpy()
-        for node, day in departure_from.items():
-            t_ref[origins == node] = day
+        t_ref[legs] = np.clip(
+            evaluation.departure_day, self.windows[0][legs], self.windows[1][legs]
+        )
         if path_changed:
             alpha = np.full_like(a_ref, self.alpha0)
             tau = np.full_like(a_ref, self.tau0)
+            self.region = TrustRegion(a_ref, t_ref, alpha, tau)
         else:
-            alpha = np.maximum(
-                self.region.alpha_km * self.settings.shrink, self.settings.min_alpha_km
-            )
-            tau = self.region.tau_days * self.settings.shrink
-        self.region = TrustRegion(a_ref, t_ref, alpha, tau)
+            self.region = replace(self.region, a_ref=a_ref, t_ref=t_ref)
+            self.narrow(legs, dates=True)
+
+    def narrow(self, edges, *, dates: bool):
+        """Halve the radius (and date) intervals of ``edges``; other edges stay wide."""
+        alpha, tau = self.region.alpha_km.copy(), self.region.tau_days.copy()
+        alpha[edges] = np.maximum(alpha[edges] * self.settings.shrink, self.settings.min_alpha_km)
+        if dates:
+            tau[edges] = tau[edges] * self.settings.shrink
+        self.region = replace(self.region, alpha_km=alpha, tau_days=tau)
 
     def run(self):
         """Iterate until the path is stable and the true ΔV stops moving, then re-optimise.
@@ -259,15 +278,24 @@ class _Driver:
             path, legs, a_legs, evaluation = outcome
             dv_true = float(evaluation.dv_mps.sum())
             changed = path != last_path
+            late = evaluation.end_day > self.mission.tmax_days + 1e-6
+            if late and last_path is not None and pending is None:
+                # the linear durations under-estimated (date cross terms): reject the step
+                self.narrow(legs, dates=True)
+                self.notes.append(
+                    f"iteration {len(self.history) - 1}: true plan ends on day "
+                    f"{evaluation.end_day:.1f}, after T_max: step rejected, intervals narrowed"
+                )
+                continue
             if pending is not None:
                 if not changed:
-                    return path, legs, pending, "converged"
+                    return self.best + ("converged",)
                 self.notes.append("the MILP around the re-optimised point chose another path")
                 pending = None
             elif not changed:
                 stalled = abs(last_dv - dv_true) <= self.settings.dv_tol_mps
                 narrowest = np.max(self.region.alpha_km[legs]) <= self.settings.min_alpha_km
-                if (stalled or narrowest) and evaluation.end_day <= self.mission.tmax_days + 1e-6:
+                if (stalled or narrowest) and not late:
                     if flips < self.settings.max_assumption_rounds and self.flip_assumptions(
                         path, legs, a_legs, evaluation
                     ):
@@ -276,13 +304,19 @@ class _Driver:
                         continue
                     final = self.reoptimize(path, legs, a_legs)
                     if confirmations == self.settings.max_confirmations:
-                        return path, legs, final, "converged_unconfirmed"
+                        return self.best + ("converged_unconfirmed",)
                     confirmations += 1
                     self.move_references(path, legs, final.a_drift, final.evaluation, False)
                     pending, last_path, last_dv = final, path, dv_true
                     continue
-            self.move_references(path, legs, a_legs, evaluation, changed)
+            revisited = changed and tuple(path) in self.visited_paths
+            self.visited_paths.add(tuple(path))
+            # a path seen before does not restore wide intervals (no ping-pong between paths)
+            self.move_references(path, legs, a_legs, evaluation, changed and not revisited)
             last_path, last_dv = path, dv_true
+        if self.best is not None:
+            self.notes.append(f"iteration limit {self.settings.max_iterations} reached")
+            return self.best + ("iteration_limit",)
         raise SolverFailure(
             f"no converged path within {self.settings.max_iterations} iterations; raise "
             "max_iterations or loosen dv_tol_mps"
@@ -295,17 +329,30 @@ class _Driver:
             self.orbits, path, geometry.side[legs], geometry.inc_drift[legs], a_legs,
             tmax_days=self.mission.tmax_days, deorbit_days=self.mission.deorbit_days,
             a_low=geometry.a_low, a_high=geometry.a_high, j2=self.mission.j2,
+            inclination=self.mission.drift_inclination,
         )  # fmt: skip
+        # the chosen copies take the re-optimised sides and inclinations (confirming MILP)
+        side, inc = geometry.side.copy(), geometry.inc_drift.copy()
+        side[legs], inc[legs] = final.side, final.inc_drift
+        self.geometry = geometry._replace(side=side, inc_drift=inc)
         self.timings["reoptimize_s"] = self.timings.get("reoptimize_s", 0.0) + (
             time.perf_counter() - start
         )
         self.notes.append(f"re-optimisation: {final.message}; {final.improved_by_mps:+.2f} m/s")
+        ends_in_time = final.evaluation.end_day <= self.mission.tmax_days + 1e-6
+        if ends_in_time and (
+            self.best is None
+            or final.evaluation.dv_mps.sum() < self.best[2].evaluation.dv_mps.sum()
+        ):
+            self.best = (path, legs, final)
         return final
 
     def flip_assumptions(self, path, legs, a_legs, evaluation) -> bool:
         """Resume with another side/inclination for legs where one is clearly cheaper."""
         origins, targets = self.orbits.take(path[:-1]), self.orbits.take(path[1:])
-        allotted = evaluation.duration_days * SECONDS_PER_DAY
+        # each leg may take its own time plus all of the mission's slack
+        slack = max(self.mission.tmax_days - evaluation.end_day, 0.0)
+        allotted = (evaluation.duration_days + slack) * SECONDS_PER_DAY
         best = cheapest_transfer(
             origins, targets, evaluation.departure_day * SECONDS_PER_DAY, allotted,
             self.geometry.a_low, self.geometry.a_high, inclination="free", j2=self.mission.j2,
@@ -379,7 +426,6 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     path, legs, final, status = driver.run()
     driver.timings["iterations_s"] = sum(r.seconds for r in driver.history)
     driver.timings["total_s"] = time.perf_counter() - wall
-    geometry = driver.geometry
     ids = catalog.ids
     plan = final.evaluation
     legs_out = tuple(
@@ -390,8 +436,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
             duration_days=float(plan.duration_days[k]),
             drift_a_km=float(final.a_drift[k] / 1e3),
             drift_alt_km=float((final.a_drift[k] - R_EARTH) / 1e3),
-            drift_inc_deg=float(np.rad2deg(geometry.inc_drift[legs[k]])),
-            side=int(geometry.side[legs[k]]),
+            drift_inc_deg=float(np.rad2deg(final.inc_drift[k])),
+            side=int(final.side[k]),
             dv_mps=float(plan.dv_mps[k]),
         )  # fmt: skip
         for k in range(len(legs))
@@ -407,7 +453,9 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         mission=mission,
         iterations=tuple(driver.history),
         model_size={
-            "edges_kept": len(driver.kept),
+            "edges_kept": len(driver.kept[["i", "j"]].drop_duplicates()),
+            "edge_copies": len(driver.kept),
+            "date_windows": int(driver.kept["window"].max()) + 1,
             "edges_total": len(driver.table.frame),
             "binaries": size.binaries,
             "continuous": size.continuous,

@@ -260,6 +260,7 @@ def cheapest_transfer(
     a_high,
     *,
     inclination="table3",
+    sides=(1.0, -1.0),
     j2=J2,
     mu=MU_EARTH,
 ) -> TransferChoice:
@@ -284,6 +285,8 @@ def cheapest_transfer(
     inclination : {"table3", "free"}
         ``"table3"``: the inclination of Table 3 for each side; ``"free"``: try both
         debris inclinations on both sides and keep the cheaper.
+    sides : tuple of {1, -1}
+        Sides of the asymptote to consider (default both).
 
     Returns
     -------
@@ -291,7 +294,7 @@ def cheapest_transfer(
     """
     gap = raan_gap(origin, target, t_depart)
     candidates = []
-    for side in (1.0, -1.0):
+    for side in sides:
         if inclination == "table3":
             incs = [drift_inclination(origin.inc, target.inc, side)]
         elif inclination == "free":

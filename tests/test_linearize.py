@@ -14,7 +14,7 @@ def setup(request):
     catalog = Catalog.paper_case() if request.param == "paper" else sso_catalog(20, seed=5)
     mission = Mission()
     table = preoptimize(catalog, mission)
-    geometry = edge_geometry(table)
+    geometry = edge_geometry(table.kept, catalog, mission)
     kept = table.kept
     m = len(kept)
     region = TrustRegion(
