@@ -35,6 +35,8 @@ from .reoptimize import reoptimize
 from .solution import IterationRecord, Leg, PlanEvaluation, Solution, evaluate_plan
 from .transfer import cheapest_transfer
 
+FROZEN_GAP_DEG = 0.1
+
 
 class MissionInfeasible(RuntimeError):
     """No path meets the mission's constraints; the message says what could be relaxed."""
@@ -70,8 +72,8 @@ class SequentialSettings:
         the mission is declared infeasible.
     date_windows : int, optional
         Number of departure-date windows over which every edge is replicated, each with
-        its own reference (:func:`~sdc_cvx.edges.preoptimize_windows`); default n - 1,
-        one per leg.  1 is the paper's single reference per edge.
+        its own reference (:func:`~sdc_cvx.edges.preoptimize_windows`); default
+        :func:`default_date_windows`.  1 is the paper's single reference per edge.
     """
 
     alpha_km: float = 50.0
@@ -99,6 +101,18 @@ def edge_geometry(edges: pd.DataFrame, catalog: Catalog, mission: Mission) -> Ed
         a_high=a_high,
         j2=mission.j2,
     )
+
+
+def default_date_windows(catalog: Catalog, mission: Mission) -> int:
+    """One departure-date window per leg, or one when RAAN gaps hardly move.
+
+    If the J2 rates of all candidates agree so well that no RAAN gap moves by more
+    than ``FROZEN_GAP_DEG`` over the mission (the paper's case: 0.02 deg), the date
+    of a leg does not change its transfer and a single reference per edge suffices.
+    """
+    rates = node_orbits(catalog, mission).rate * SECONDS_PER_DAY  # rad/day
+    spread_deg = np.rad2deg(rates.max() - rates.min()) * mission.tmax_days
+    return 1 if spread_deg < FROZEN_GAP_DEG else mission.n - 1
 
 
 def read_path(model: PathModel, n: int) -> tuple[list[int], list[int]]:
@@ -134,7 +148,7 @@ class _Driver:
         # T0 = 2 months for 4 legs in a year, Part IV-B), or T0 if shorter: references
         # that each use the whole mission would make the first MILP infeasible.
         share = (mission.tmax_days - mission.n * mission.deorbit_days) / (mission.n - 1)
-        windows = settings.date_windows or mission.n - 1
+        windows = settings.date_windows or default_date_windows(catalog, mission)
         bounds = np.linspace(*self.depart_range, windows + 1)
         self.kept = preoptimize_windows(catalog, mission, bounds, reference_days=2 / 3 * share)
         self.timings["preoptimize_s"] = time.perf_counter() - start
