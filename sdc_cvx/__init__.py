@@ -4,9 +4,25 @@ Data flow: :class:`Catalog` + :class:`Mission` -> :func:`preoptimize` (edge tabl
 -> linearisation -> CVXPY model -> sequential driver -> nonlinear re-optimisation.
 """
 
+from .backends import SolverOptions
 from .catalog import Catalog, CatalogError
 from .edges import EdgeTable, preoptimize
 from .mission import Mission, MissionError
+from .sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
+from .solution import Solution
 
-__all__ = ["Catalog", "CatalogError", "EdgeTable", "Mission", "MissionError", "preoptimize"]
+__all__ = [
+    "Catalog",
+    "CatalogError",
+    "EdgeTable",
+    "Mission",
+    "MissionError",
+    "MissionInfeasible",
+    "SequentialSettings",
+    "Solution",
+    "SolverFailure",
+    "SolverOptions",
+    "preoptimize",
+    "solve",
+]
 __version__ = "0.1.0"

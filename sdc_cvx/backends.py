@@ -160,14 +160,16 @@ def solve_milp(problem: cp.Problem, options: SolverOptions, *, warm_start=False)
     try:
         problem.solve(warm_start=warm_start, **backend_kwargs(options))
         message = problem.status
-    except cp.error.SolverError as err:
+    except (cp.error.SolverError, ValueError) as err:  # ValueError: an option the backend refuses
         return SolveReport(Status.ERROR, None, None, None, None, 0.0,
                            time.perf_counter() - wall, options.backend, str(err))  # fmt: skip
     wall = time.perf_counter() - wall
     stats = problem.solver_stats
     solve_seconds = float(stats.solve_time or 0.0)
     info = stats.extra_stats if options.backend == "HIGHS" else None
-    status = _status(problem.status, info)
+    status = _status(problem.status, info, limited=options.time_limit_s is not None)
+    if status.has_solution and any(v.value is None for v in problem.variables()):
+        status, message = Status.ERROR, f"{problem.status} but no variable values"
     if status == Status.INFEASIBLE and problem.status == cvxpy_settings.INFEASIBLE_OR_UNBOUNDED:
         message = "infeasible or unbounded (the model's variables are bounded: infeasible)"
     has = status.has_solution
@@ -184,9 +186,12 @@ def solve_milp(problem: cp.Problem, options: SolverOptions, *, warm_start=False)
     )
 
 
-def _status(cvxpy_status: str, highs_info) -> Status:
-    if cvxpy_status in (cp.OPTIMAL, cp.OPTIMAL_INACCURATE):
+def _status(cvxpy_status: str, highs_info, *, limited: bool) -> Status:
+    if cvxpy_status == cp.OPTIMAL:
         return Status.OPTIMAL
+    if cvxpy_status == cp.OPTIMAL_INACCURATE:
+        # SCIP, CBC and SciPy report a time limit with an incumbent this way
+        return Status.TIME_LIMIT if limited else Status.OPTIMAL
     if cvxpy_status == cp.USER_LIMIT:
         feasible = highs_info is not None and getattr(highs_info, "primal_solution_status", 0) == 2
         return Status.TIME_LIMIT if feasible else Status.NO_SOLUTION

@@ -133,4 +133,6 @@ def run(catalog_path, n, tmax_days, deorbit_days, preopt_days, backend, time_lim
     folder = Path(out_dir) if out_dir else new_run_folder()
     write_run(folder, solution, preoptimize(catalog, mission, departure_day=mission.deorbit_days))
     click.echo(solution.summary())
+    if solution.status != "converged":
+        click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
     click.echo(f"results   {folder}/solution.json")

@@ -7,6 +7,7 @@ m/s).  Defaults are the paper's application case (Part V).
 from __future__ import annotations
 
 import dataclasses
+import numbers
 from dataclasses import dataclass
 
 from .orbits import J2
@@ -65,16 +66,23 @@ class Mission:
             raise MissionError("invalid mission: " + "; ".join(problems))
 
     def _problems(self):
-        if isinstance(self.n, bool) or not isinstance(self.n, int):
+        if isinstance(self.n, bool) or not isinstance(self.n, numbers.Integral):
             yield f"n must be an integer, got {self.n!r}"
         elif self.n < 2:
             yield f"n must be >= 2 (a mission visits at least two debris), got {self.n}"
+        numeric = ("tmax_days", "preopt_days", "dv_max_mps", "j2", "deorbit_days",
+                   "operations_dv_mps", "min_transfer_days")  # fmt: skip
+        wrong_type = {name for name in numeric if not _is_real(getattr(self, name))}
+        for name in sorted(wrong_type):
+            yield f"{name} must be a number, got {getattr(self, name)!r}"
         for name in ("tmax_days", "preopt_days", "dv_max_mps", "j2"):
-            if not getattr(self, name) > 0:
+            if name not in wrong_type and not getattr(self, name) > 0:
                 yield f"{name} must be > 0, got {getattr(self, name)!r}"
         for name in ("deorbit_days", "operations_dv_mps", "min_transfer_days"):
-            if not getattr(self, name) >= 0:
+            if name not in wrong_type and not getattr(self, name) >= 0:
                 yield f"{name} must be >= 0, got {getattr(self, name)!r}"
+        if wrong_type:
+            return
         bounds = self.drift_altitude_km
         if len(bounds) != 2:
             yield f"drift_altitude_km must be (low, high), got {bounds!r}"
@@ -85,12 +93,13 @@ class Mission:
                 f"drift_inclination must be one of {DRIFT_INCLINATION_RULES}, "
                 f"got {self.drift_inclination!r}"
             )
-        if isinstance(self.n, int) and self.n >= 2 and self.tmax_days > 0:
-            floor = (self.n - 1) * (self.min_transfer_days + self.deorbit_days)
-            if floor > self.tmax_days:
+        if isinstance(self.n, numbers.Integral) and self.n >= 2 and self.tmax_days > 0:
+            # operations at every debris (the last included) and n - 1 transfers
+            floor = self.n * self.deorbit_days + (self.n - 1) * self.min_transfer_days
+            if floor >= self.tmax_days:
                 yield (
-                    f"(n - 1) * (min_transfer_days + deorbit_days) = {floor:g} days exceeds "
-                    f"tmax_days = {self.tmax_days:g}"
+                    f"n * deorbit_days + (n - 1) * min_transfer_days = {floor:g} days leaves no "
+                    f"time for transfers within tmax_days = {self.tmax_days:g}"
                 )
 
     def check_candidates(self, n_candidates: int) -> None:
@@ -107,3 +116,7 @@ class Mission:
         out = dataclasses.asdict(self)
         out["drift_altitude_km"] = list(self.drift_altitude_km)
         return out
+
+
+def _is_real(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)

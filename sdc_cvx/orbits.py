@@ -72,9 +72,9 @@ def circular_a_for_raan_rate(rate, inc, *, j2=J2, mu=MU_EARTH, r_eq=R_EARTH):
         (rate of the wrong sign for the inclination, or zero).
     """
     c_j2 = 1.5 * j2 * np.sqrt(mu) * r_eq**2
-    ratio = -c_j2 * np.cos(inc) / np.asarray(rate, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(ratio > 0.0, np.abs(ratio) ** (2.0 / 7.0), np.nan)
+        ratio = -c_j2 * np.cos(inc) / np.asarray(rate, dtype=float)
+        return np.where((ratio > 0.0) & np.isfinite(ratio), np.abs(ratio) ** (2.0 / 7.0), np.nan)
 
 
 def orbital_speed(r, a, *, mu=MU_EARTH):

@@ -28,7 +28,7 @@ from .transfer import (
     NodeOrbits,
     drift_inclination,
     drift_rate,
-    duration_bounded_interval,
+    duration_window_interval,
     minimize_on_interval,
     raan_gap,
     transfer_duration,
@@ -62,8 +62,8 @@ def side_bounds(orbits: NodeOrbits, path, side, inc_drift, a_low, a_high, *, j2)
     return lo, hi
 
 
-def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, a_low, a_high,
-                 inclination, j2):  # fmt: skip
+def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, min_days,
+                 a_low, a_high, inclination, j2):  # fmt: skip
     """Legs chosen one after the other, each minimising ``dV + price * T`` [m/s, m/s/day].
 
     Each leg leaves when the previous one has arrived (plus the operations) and
@@ -90,9 +90,10 @@ def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, a_
         )
         t_depart = ready * SECONDS_PER_DAY
         gap = raan_gap(origin, target, t_depart)
-        lo, hi = duration_bounded_interval(
-            gap, target.rate, sides, incs, remaining * SECONDS_PER_DAY, a_low, a_high, j2=j2
-        )
+        lo, hi = duration_window_interval(
+            gap, target.rate, sides, incs, min_days * SECONDS_PER_DAY,
+            remaining * SECONDS_PER_DAY, a_low, a_high, j2=j2,
+        )  # fmt: skip
 
         def cost(a, origin=origin, target=target, incs=incs, t_depart=t_depart):
             dv = transfer_dv(origin.a, origin.inc, target.a, target.inc, a, incs[:, None])
@@ -111,7 +112,7 @@ def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, a_
 
 
 def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days, deorbit_days,
-               a_low, a_high, j2, inclination="table3") -> Reoptimized:  # fmt: skip
+               a_low, a_high, j2, inclination="table3", min_days=0.0) -> Reoptimized:  # fmt: skip
     """Minimise the true total ΔV of a fixed path subject to the true end date <= T_max.
 
     Parameters
@@ -127,19 +128,23 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
         Drift radius bounds [m].
     inclination : {"table3", "free"}
         Drift inclinations the forward pass may use.
+    min_days : float
+        Shortest allowed transfer T_min [days].
 
     Returns
     -------
     Reoptimized
         The cheapest plan found that ends by T_max (or the start if none does).
     """
-    kwargs = dict(tmax_days=tmax_days, deorbit_days=deorbit_days, a_low=a_low, a_high=a_high, j2=j2)
+    kwargs = dict(tmax_days=tmax_days, deorbit_days=deorbit_days, min_days=min_days,
+                  a_low=a_low, a_high=a_high, j2=j2)  # fmt: skip
 
     def plan(a, inc):
         return evaluate_plan(orbits, path, a, inc, deorbit_days=deorbit_days, j2=j2)
 
     def feasible(evaluation):
-        return np.isfinite(evaluation.end_day) and evaluation.end_day <= tmax_days + 1e-6
+        in_time = np.isfinite(evaluation.end_day) and evaluation.end_day <= tmax_days + 1e-6
+        return in_time and bool(np.all(evaluation.duration_days >= min_days - 1e-6))
 
     side, inc_drift = np.asarray(side, dtype=float), np.asarray(inc_drift, dtype=float)
     start = np.asarray(a_start, dtype=float)

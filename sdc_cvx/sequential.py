@@ -121,7 +121,7 @@ def read_path(model: PathModel, n: int) -> tuple[list[int], list[int]]:
     successor = {int(model.edges_from[e]): (int(model.edges_to[e]), int(e)) for e in chosen}
     starts = set(successor) - {int(model.edges_to[e]) for e in chosen}
     if len(chosen) != n - 1 or len(starts) != 1:
-        raise RuntimeError(f"MILP returned {len(chosen)} edges with starts {sorted(starts)}")
+        raise SolverFailure(f"MILP returned {len(chosen)} edges with starts {sorted(starts)}")
     node, path, legs = starts.pop(), [], []
     path.append(node)
     while node in successor:
@@ -129,7 +129,7 @@ def read_path(model: PathModel, n: int) -> tuple[list[int], list[int]]:
         path.append(node)
         legs.append(edge)
     if len(path) != n:  # a disjoint cycle: the ordering rows must prevent it
-        raise RuntimeError(f"MILP solution is not one path: {path} from edges {chosen.tolist()}")
+        raise SolverFailure(f"MILP solution is not one path: {path} from edges {chosen.tolist()}")
     return path, legs
 
 
@@ -196,7 +196,11 @@ class _Driver:
         alpha_km = np.asarray(self.model.p.value)[legs]
         a_legs = coefficients.a_ref[legs] + alpha_km * 1e3
         evaluation = self.evaluate(path, legs, a_legs)
-        self.record(report, path, evaluation, start, note)
+        if report.status == Status.TIME_LIMIT:
+            gap = "unknown" if report.mip_gap is None else f"{report.mip_gap:.2%}"
+            note = (note + "; " if note else "") + f"time limit: incumbent used (gap {gap})"
+            self.notes.append(f"iteration {len(self.history)}: {note}")
+        self.record(report, path, legs, evaluation, start, note)
         return path, legs, a_legs, evaluation
 
     def evaluate(self, path, legs, a_legs) -> PlanEvaluation:
@@ -205,7 +209,7 @@ class _Driver:
             deorbit_days=self.mission.deorbit_days, j2=self.mission.j2,
         )  # fmt: skip
 
-    def record(self, report: SolveReport, path, evaluation, start, note):
+    def record(self, report: SolveReport, path, legs, evaluation, start, note):
         ids = self.catalog.ids
         record = IterationRecord(
             iteration=len(self.history),
@@ -217,7 +221,7 @@ class _Driver:
             seconds=time.perf_counter() - start,
             solve_seconds=report.solve_seconds,
             cvxpy_seconds=report.overhead_seconds,
-            alpha_km=float(np.max(self.region.alpha_km)),
+            alpha_km=float(np.max(self.region.alpha_km[legs])) if len(legs) else float("nan"),
             status=report.status.value,
             note=note,
         )
@@ -238,11 +242,11 @@ class _Driver:
                 raise MissionInfeasible(_relax_message(self.mission, self.table.summary()))
             self.initial_retries += 1
             self.region = replace(self.region, alpha_km=self.region.alpha_km * self.settings.shrink)
-            self.record(report, [], None, start, "no path yet: radius intervals narrowed")
+            self.record(report, [], [], None, start, "no path yet: radius intervals narrowed")
             return None
         # infeasible around the new references: the secants over-estimate too much; narrow them
         self.narrow(np.arange(len(self.kept)), dates=False)
-        self.record(report, [], None, start, "infeasible linearisation: intervals narrowed")
+        self.record(report, [], [], None, start, "infeasible linearisation: intervals narrowed")
         return None
 
     # -- references and intervals ----------------------------------------------------------
@@ -292,7 +296,9 @@ class _Driver:
             path, legs, a_legs, evaluation = outcome
             dv_true = float(evaluation.dv_mps.sum())
             changed = path != last_path
-            late = evaluation.end_day > self.mission.tmax_days + 1e-6
+            late = evaluation.end_day > self.mission.tmax_days + 1e-6 or bool(
+                np.any(evaluation.duration_days < self.mission.min_transfer_days - 1e-6)
+            )
             if late and last_path is not None and pending is None:
                 # the linear durations under-estimated (date cross terms): reject the step
                 self.narrow(legs, dates=True)
@@ -344,6 +350,7 @@ class _Driver:
             tmax_days=self.mission.tmax_days, deorbit_days=self.mission.deorbit_days,
             a_low=geometry.a_low, a_high=geometry.a_high, j2=self.mission.j2,
             inclination=self.mission.drift_inclination,
+            min_days=self.mission.min_transfer_days,
         )  # fmt: skip
         # the chosen copies take the re-optimised sides and inclinations (confirming MILP)
         side, inc = geometry.side.copy(), geometry.inc_drift.copy()
@@ -353,7 +360,9 @@ class _Driver:
             time.perf_counter() - start
         )
         self.notes.append(f"re-optimisation: {final.message}; {final.improved_by_mps:+.2f} m/s")
-        ends_in_time = final.evaluation.end_day <= self.mission.tmax_days + 1e-6
+        ends_in_time = final.evaluation.end_day <= self.mission.tmax_days + 1e-6 and bool(
+            np.all(final.evaluation.duration_days >= self.mission.min_transfer_days - 1e-6)
+        )
         if ends_in_time and (
             self.best is None
             or final.evaluation.dv_mps.sum() < self.best[2].evaluation.dv_mps.sum()
@@ -369,7 +378,8 @@ class _Driver:
         allotted = (evaluation.duration_days + slack) * SECONDS_PER_DAY
         best = cheapest_transfer(
             origins, targets, evaluation.departure_day * SECONDS_PER_DAY, allotted,
-            self.geometry.a_low, self.geometry.a_high, inclination="free", j2=self.mission.j2,
+            self.geometry.a_low, self.geometry.a_high,
+            inclination=self.mission.drift_inclination, j2=self.mission.j2,
         )  # fmt: skip
         better = best.dv < evaluation.dv_mps - 0.5
         differs = (best.side != self.geometry.side[legs]) | ~np.isclose(

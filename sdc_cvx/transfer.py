@@ -227,6 +227,30 @@ def duration_bounded_interval(
     return np.where(empty, np.nan, lo), np.where(empty, np.nan, hi)
 
 
+def duration_window_interval(gap, rate_target, side, inc_drift, min_duration, max_duration,
+                             a_low, a_high, *, j2=J2, mu=MU_EARTH):  # fmt: skip
+    """Drift radii on ``side`` whose coast lasts between ``min_duration`` and ``max_duration`` [s].
+
+    :func:`duration_bounded_interval` for the upper bound, minus the radii fast enough
+    to finish before ``min_duration`` (T_min, Part II-B), which lie at the far end of
+    the band from the asymptote, so the result is still an interval.
+    """
+    lo, hi = duration_bounded_interval(
+        gap, rate_target, side, inc_drift, max_duration, a_low, a_high, j2=j2, mu=mu
+    )
+    if not np.any(np.asarray(min_duration) > 0):
+        return lo, hi
+    fast_lo, fast_hi = duration_bounded_interval(
+        gap, rate_target, side, inc_drift, min_duration, a_low, a_high, j2=j2, mu=mu
+    )
+    has_fast = np.isfinite(fast_lo)
+    fast_at_low_end = has_fast & (fast_lo <= lo)
+    lo = np.where(fast_at_low_end, np.maximum(lo, fast_hi), lo)
+    hi = np.where(has_fast & ~fast_at_low_end, np.minimum(hi, fast_lo), hi)
+    empty = ~(lo <= hi)
+    return np.where(empty, np.nan, lo), np.where(empty, np.nan, hi)
+
+
 class TransferChoice(NamedTuple):
     """Cheapest drift transfer found per edge (arrays aligned with the input edges).
 

@@ -22,7 +22,8 @@ def test_defaults_are_the_paper_case():
         ({"drift_altitude_km": (1200, 400)}, "0 < low < high"),
         ({"drift_altitude_km": (400,)}, "(low, high)"),
         ({"drift_inclination": "best"}, "drift_inclination must be one of"),
-        ({"n": 5, "deorbit_days": 100}, "exceeds tmax_days"),
+        ({"n": 5, "deorbit_days": 73.05}, "leaves no time for transfers"),  # 5 x 73.05 = Tmax
+        ({"tmax_days": "365"}, "tmax_days must be a number"),
     ],
 )
 def test_invalid_missions_name_the_field(changes, message):
@@ -34,6 +35,19 @@ def test_all_problems_reported_together():
     with pytest.raises(MissionError) as err:
         Mission(n=1, tmax_days=-3)
     assert "n must be" in str(err.value) and "tmax_days" in str(err.value)
+
+
+def test_operations_at_every_debris_count_in_the_floor():
+    """n operations (the last debris' too) plus n - 1 transfers must fit in T_max."""
+    Mission(n=3, tmax_days=100.0, deorbit_days=30.0)  # 90 days of operations: legal
+    with pytest.raises(MissionError, match="leaves no time"):
+        Mission(n=3, tmax_days=100.0, deorbit_days=30.0, min_transfer_days=5.0)  # 90 + 10
+
+
+def test_numpy_integers_are_integers():
+    import numpy as np
+
+    assert Mission(n=np.int64(4)).n == 4
 
 
 def test_more_debris_than_candidates():
