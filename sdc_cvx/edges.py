@@ -142,14 +142,20 @@ def preoptimize(
 
 
 def preoptimize_windows(
-    catalog: Catalog, mission: Mission, window_bounds, *, reference_days=None, sides=(1, -1)
+    catalog: Catalog,
+    mission: Mission,
+    window_bounds,
+    *,
+    reference_days=None,
+    sides=(1, -1),
+    reference_at=(0.0,),
 ) -> pd.DataFrame:  # fmt: skip
     """Pre-optimised copies of every edge, per departure-date window and side (time-expanded).
 
     With J2 rates that differ, the right drift orbit of an edge depends on when it is
     flown, and a single reference date per edge (Part IV-B) misjudges edges flown
     late in the mission.  Each window ``[lo, hi)`` gets its own copy of every edge,
-    pre-optimised at the window's centre, and one copy per side of the duration
+    pre-optimised at the window's start, and one copy per side of the duration
     asymptote where both are feasible: the model then chooses an edge, its window
     and its side, instead of fixing the side at initialisation (Part IV-B) and only
     checking it at the end.  One window and the cheaper side is the paper's method.
@@ -165,6 +171,11 @@ def preoptimize_windows(
         Default: T0.
     sides : tuple of {1, -1}
         Sides to make copies for; ``(1, -1)`` makes one copy per feasible side.
+    reference_at : tuple of float
+        Where in each window copies are referenced, as fractions of its width: ``(0,)``
+        its earliest departure (for one window, the paper's first departure), ``(0,
+        0.5)`` also its centre.  Each placement finds the optimum on cases where the
+        other misses it (``tests/test_enumeration.py``); both double the copies.
 
     Returns
     -------
@@ -178,14 +189,21 @@ def preoptimize_windows(
     )  # fmt: skip
     frames = []
     for k, (lo, hi) in enumerate(zip(bounds[:-1], bounds[1:], strict=True)):
-        center = 0.5 * (lo + hi)
-        for side in sides:
-            kept = preoptimize(catalog, mission, departure_day=center, sides=(side,)).frame
-            ref = preoptimize(catalog, reference, departure_day=center, sides=(side,)).frame
-            use_ref = ref["status"] == KEPT
-            copies = kept.where(~use_ref, ref)  # a faster reference where one exists
-            copies = copies[kept["status"] == KEPT].assign(window=k, window_lo=lo, window_hi=hi)
-            frames.append(copies)
+        for reference_day in np.unique(lo + np.asarray(reference_at) * (hi - lo)):
+            frames += _copies(catalog, mission, reference, reference_day, sides, k, lo, hi)
     frame = pd.concat(frames, ignore_index=True)
     frame[["i", "j", "side", "window"]] = frame[["i", "j", "side", "window"]].astype(int)
     return frame
+
+
+def _copies(catalog, mission, reference, reference_day, sides, window, lo, hi):
+    """Kept copies of every edge referenced at ``reference_day``, one frame per side."""
+    frames = []
+    for side in sides:
+        kept = preoptimize(catalog, mission, departure_day=reference_day, sides=(side,)).frame
+        ref = preoptimize(catalog, reference, departure_day=reference_day, sides=(side,)).frame
+        use_ref = ref["status"] == KEPT
+        copies = kept.where(~use_ref, ref)  # a faster reference where one exists
+        copies = copies[kept["status"] == KEPT]
+        frames.append(copies.assign(window=window, window_lo=lo, window_hi=hi))
+    return frames
