@@ -22,6 +22,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import minimize
 
+from .linearize import KM
 from .orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
 from .solution import PlanEvaluation, evaluate_plan
 from .transfer import (
@@ -35,7 +36,6 @@ from .transfer import (
     transfer_dv,
 )
 
-KM = 1e3
 ASYMPTOTE_MARGIN = 1e-6  # relative distance kept from the asymptote
 BISECTION_STEPS = 25
 

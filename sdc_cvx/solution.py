@@ -42,12 +42,12 @@ class PlanEvaluation(NamedTuple):
 
 
 def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=0.0,
-                  not_before=None, j2) -> PlanEvaluation:  # fmt: skip
+                  j2) -> PlanEvaluation:  # fmt: skip
     """Chain the legs of ``path`` through the true model (Eq. 10-13).
 
     The vehicle is at ``path[0]`` at t = 0; each leg leaves after the operations at
-    its debris (``deorbit_days``), or at ``not_before`` if that is later (a planned
-    wait), coasts on its drift orbit until the RAANs meet, and arrives.
+    its debris (``deorbit_days``, the paper's "as soon as possible", Part III-H),
+    coasts on its drift orbit until the RAANs meet, and arrives.
 
     Parameters
     ----------
@@ -59,8 +59,6 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
         Drift radius [m] and inclination [rad] of each leg (length n - 1).
     deorbit_days : float
         T_deorb [days].
-    not_before : array_like, optional
-        Earliest departure date of each leg [days].
     j2 : float
 
     Returns
@@ -71,12 +69,11 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
     legs = len(path) - 1
     a_drift = np.broadcast_to(np.asarray(a_drift, dtype=float), (legs,))
     inc_drift = np.broadcast_to(np.asarray(inc_drift, dtype=float), (legs,))
-    not_before = np.full(legs, -np.inf) if not_before is None else np.asarray(not_before, float)
     departure, duration, arrival = np.empty(legs), np.empty(legs), np.empty(legs)
     ready = deorbit_days  # operations at the first debris, reached at t = 0
     for k in range(legs):
         origin, target = orbits.take([path[k]]), orbits.take([path[k + 1]])
-        departure[k] = max(ready, not_before[k])
+        departure[k] = ready
         seconds = transfer_duration(
             origin, target, a_drift[k], inc_drift[k], departure[k] * SECONDS_PER_DAY, j2=j2
         )
