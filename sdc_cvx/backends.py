@@ -11,6 +11,7 @@ report are ``None``, never 0.
 from __future__ import annotations
 
 import time
+import warnings
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -158,7 +159,10 @@ def solve_milp(problem: cp.Problem, options: SolverOptions, *, warm_start=False)
     """
     wall = time.perf_counter()
     try:
-        problem.solve(warm_start=warm_start, **backend_kwargs(options))
+        with warnings.catch_warnings():
+            # CVXPY warns on inaccurate/limited results; the status is read and reported below
+            warnings.filterwarnings("ignore", message="Solution may be inaccurate")
+            problem.solve(warm_start=warm_start, **backend_kwargs(options))
         message = problem.status
     except (cp.error.SolverError, ValueError) as err:  # ValueError: an option the backend refuses
         return SolveReport(Status.ERROR, None, None, None, None, 0.0,
