@@ -192,6 +192,7 @@ class _Driver:
         self.history: list[IterationRecord] = []
         self.initial_retries = 0
         self.best = None  # cheapest re-optimised plan that ends by T_max: (path, legs, final)
+        self.initial_legs = None  # the first linearised solution's plan (paper Fig. 19)
         self.notes: list[str] = []
 
     # -- one iteration -------------------------------------------------------------------
@@ -215,6 +216,11 @@ class _Driver:
             note = (note + "; " if note else "") + f"time limit: incumbent used (gap {gap})"
             self.notes.append(f"iteration {len(self.history)}: {note}")
         self.record(report, path, legs, evaluation, start, note)
+        if self.initial_legs is None:
+            g = self.geometry
+            self.initial_legs = make_legs(
+                self.catalog.ids, path, a_legs, g.inc_drift[legs], g.side[legs], evaluation
+            )
         return path, legs, a_legs, evaluation
 
     def evaluate(self, path, legs, a_legs) -> PlanEvaluation:
@@ -466,24 +472,12 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     driver.timings["total_s"] = time.perf_counter() - wall
     ids = catalog.ids
     plan = final.evaluation
-    legs_out = tuple(
-        Leg(
-            from_id=ids[path[k]],
-            to_id=ids[path[k + 1]],
-            departure_day=float(plan.departure_day[k]),
-            duration_days=float(plan.duration_days[k]),
-            drift_a_km=float(final.a_drift[k] / 1e3),
-            drift_alt_km=float((final.a_drift[k] - R_EARTH) / 1e3),
-            drift_inc_deg=float(np.rad2deg(final.inc_drift[k])),
-            side=int(final.side[k]),
-            dv_mps=float(plan.dv_mps[k]),
-        )  # fmt: skip
-        for k in range(len(legs))
-    )
+    legs_out = make_legs(ids, path, final.a_drift, final.inc_drift, final.side, plan)
     size = driver.model.size()
     return Solution(
         path=tuple(ids[k] for k in path),
         legs=legs_out,
+        initial_legs=driver.initial_legs,
         total_dv_mps=float(plan.dv_mps.sum()) + mission.n * mission.operations_dv_mps,
         total_duration_days=plan.end_day,
         status=status,
@@ -502,6 +496,24 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         },
         timings=driver.timings,
         notes=tuple(driver.notes),
+    )
+
+
+def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation) -> tuple[Leg, ...]:
+    """Legs of a plan evaluated with the true model, in people's units."""
+    return tuple(
+        Leg(
+            from_id=ids[path[k]],
+            to_id=ids[path[k + 1]],
+            departure_day=float(plan.departure_day[k]),
+            duration_days=float(plan.duration_days[k]),
+            drift_a_km=float(a_drift[k] / 1e3),
+            drift_alt_km=float((a_drift[k] - R_EARTH) / 1e3),
+            drift_inc_deg=float(np.rad2deg(inc_drift[k])),
+            side=int(side[k]),
+            dv_mps=float(plan.dv_mps[k]),
+        )
+        for k in range(len(path) - 1)
     )
 
 

@@ -133,7 +133,9 @@ class Solution:
     """The planned mission: path, legs, totals, and how it was found.
 
     ``legs`` come from the nonlinear re-optimisation and are re-evaluated with the
-    physics module; ``iterations`` is the history of the sequential linearisation.
+    physics module; ``initial_legs`` is the first iteration's plan (the paper's
+    "before optimisation" of Fig. 19); ``iterations`` is the history of the
+    sequential linearisation.
     """
 
     path: tuple[str, ...]
@@ -144,6 +146,7 @@ class Solution:
     backend: str
     mission: Mission
     iterations: tuple[IterationRecord, ...]
+    initial_legs: tuple[Leg, ...] = ()
     model_size: dict = field(default_factory=dict)
     timings: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
@@ -167,6 +170,7 @@ class Solution:
             "status": self.status,
             "backend": self.backend,
             "legs": [leg.to_dict() for leg in self.legs],
+            "initial_legs": [leg.to_dict() for leg in self.initial_legs],
             "iterations": [record.to_dict() for record in self.iterations],
             "mission": self.mission.to_dict(),
             "model_size": self.model_size,
