@@ -129,7 +129,9 @@ class Coefficients:
     """Eq. 20 coefficients and trust bounds of every edge, in scaled units.
 
     Cost: ``C_L = max(c0[0] + c1[0] alpha, c0[1] + c1[1] alpha)`` [m/s], alpha in km.
-    Duration: ``T_L = t0 + t1 alpha + t2 (t_depart - t_ref)`` [days].
+    Duration: ``T_L = t0 + t1 alpha + t2 (t_depart - t_ref)`` [days] (one secant, Eq. 17),
+    or the paper's two half-segments through the reference (Fig. 14):
+    ``T_L = t_mid + (t1_lo if alpha < 0 else t1_hi) alpha + t2 (t_depart - t_ref)``.
     Bounds: ``alpha_lo <= alpha <= alpha_hi`` [km], ``depart_lo <= t_depart <= depart_hi``
     [days]; ``available`` is False for edges with no valid interval at their reference.
     """
@@ -139,6 +141,9 @@ class Coefficients:
     c1: np.ndarray  # shape (2, m)
     t0: np.ndarray
     t1: np.ndarray
+    t_mid: np.ndarray  # true duration at the reference [days]
+    t1_lo: np.ndarray  # slope of the half-segment on [alpha_lo, 0] [days/km]
+    t1_hi: np.ndarray  # slope of the half-segment on [0, alpha_hi] [days/km]
     t2: np.ndarray
     t_ref: np.ndarray
     alpha_lo: np.ndarray
@@ -151,8 +156,11 @@ class Coefficients:
         """Linearised cost [m/s] at ``alpha_km``."""
         return np.max(self.c0 + self.c1 * alpha_km, axis=0)
 
-    def duration(self, alpha_km, t_depart):
+    def duration(self, alpha_km, t_depart, *, two_segments=False):
         """Linearised duration [days] at ``alpha_km`` and departure date ``t_depart``."""
+        if two_segments:
+            slope = np.where(np.asarray(alpha_km) < 0, self.t1_lo, self.t1_hi)
+            return self.t_mid + slope * alpha_km + self.t2 * (t_depart - self.t_ref)
         return self.t0 + self.t1 * alpha_km + self.t2 * (t_depart - self.t_ref)
 
 
@@ -209,15 +217,25 @@ def linearize(
         width = alpha_hi - alpha_lo
         t1 = np.where(width > 0, (t_at_hi - t_at_lo) / np.where(width > 0, width, 1.0), 0.0)
         t0 = t_at_lo - t1 * alpha_lo
+        t_mid = geometry.duration_days(a_ref, t_ref)
+        t1_lo = np.where(
+            alpha_lo < 0, (t_mid - t_at_lo) / np.where(alpha_lo < 0, -alpha_lo, 1.0), 0.0
+        )
+        t1_hi = np.where(
+            alpha_hi > 0, (t_at_hi - t_mid) / np.where(alpha_hi > 0, alpha_hi, 1.0), 0.0
+        )
         # exact date slope of Eq. 10 at a_ref: d/dt [gap(t) / (rate_d - rate_j)]
         relative = drift_rate(a_ref, geometry.inc_drift, j2=geometry.j2) - geometry.target.rate
         t2 = (geometry.target.rate - geometry.origin.rate) / relative
-    usable = available & np.isfinite(t0) & np.isfinite(t1) & np.isfinite(t2)
+    finite = [np.isfinite(v) for v in (t0, t1, t2, t_mid, t1_lo, t1_hi)]
+    usable = available & np.logical_and.reduce(finite)
     zero = np.zeros_like(t_ref)
     return Coefficients(
         a_ref=a_ref,
         c0=np.where(usable, c0, 0.0), c1=np.where(usable, c1, 0.0),
         t0=np.where(usable, t0, 0.0), t1=np.where(usable, t1, 0.0), t2=np.where(usable, t2, 0.0),
+        t_mid=np.where(usable, t_mid, 0.0), t1_lo=np.where(usable, t1_lo, 0.0),
+        t1_hi=np.where(usable, t1_hi, 0.0),
         t_ref=t_ref,
         alpha_lo=np.where(usable, alpha_lo, zero), alpha_hi=np.where(usable, alpha_hi, zero),
         depart_lo=np.where(usable, depart_lo, range_lo),

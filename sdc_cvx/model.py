@@ -69,10 +69,16 @@ class PathModel:
         T_max, T_deorb, T_min [days].
     operations_dv_mps : float
         C_k, cost of the operations at each debris [m/s] (a constant: n debris are visited).
+    duration_model : {"secant", "two_segments"}
+        One secant per edge (Eq. 17-18), or the paper's two half-segments through the
+        reference (Fig. 14): ``alpha = p_up - p_down`` with a binary ``sigma`` for the
+        sign of alpha, because the dates follow durations with equality, which a
+        max-of-two-lines bound cannot express.
     """
 
     def __init__(self, n_debris, edges_from, edges_to, *, n, tmax_days, deorbit_days=0.0,
-                 min_transfer_days=0.0, operations_dv_mps=0.0):  # fmt: skip
+                 min_transfer_days=0.0, operations_dv_mps=0.0,
+                 duration_model="secant"):  # fmt: skip
         self.n_debris = n_debris
         self.edges_from = np.asarray(edges_from, dtype=int)
         self.edges_to = np.asarray(edges_to, dtype=int)
@@ -115,7 +121,27 @@ class PathModel:
             # diag(P) @ v compiles fast with many parameters (DESIGN §5), unlike multiply
             return cp.diag(param) @ var
 
-        duration = times(self.t0_shifted, s) + times(self.t1, p) + times(self.t2, d)
+        if duration_model not in ("secant", "two_segments"):
+            raise ValueError(
+                f"duration_model must be 'secant' or 'two_segments', got {duration_model!r}"
+            )
+        self.two_segments = duration_model == "two_segments"
+        split_rows = []
+        if self.two_segments:
+            self.t1_lo = cp.Parameter(m, name="t1_lo")
+            sigma = self.sigma = cp.Variable(m, boolean=True, name="sigma")  # alpha >= 0
+            p_up = self.p_up = cp.Variable(m, nonneg=True, name="p_up")
+            p_down = self.p_down = cp.Variable(m, nonneg=True, name="p_down")
+            split_rows = [
+                p == p_up - p_down,
+                sigma <= s,
+                p_up <= times(self.alpha_hi, sigma),
+                p_down <= -times(self.alpha_lo, s - sigma),
+            ]
+            slopes = times(self.t1, p_up) - times(self.t1_lo, p_down)  # t1 holds t1_hi here
+        else:
+            slopes = times(self.t1, p)
+        duration = times(self.t0_shifted, s) + slopes + times(self.t2, d)
         self.duration = duration
         start = y - z  # 1 only at the first debris (Eq. 16's counting argument)
         constraints = {
@@ -139,6 +165,7 @@ class PathModel:
             "dates": [t >= 0, t <= big_t - t_deorb, t <= big_t * (1 - start)],
             "ordering": [u >= 0, u <= n_float - 1, u_to >= u_from + 1 - n_float * (1 - s)],
             "cost": [w >= times(self.c0[k], s) + times(self.c1[k], p) for k in range(2)],
+            "alpha_sign": split_rows,
         }
         self.constraint_groups = constraints
         objective = cp.Minimize(cp.sum(w) + n * float(operations_dv_mps))
@@ -150,8 +177,13 @@ class PathModel:
         for piece in range(2):
             self.c0[piece].value = k.c0[piece]
             self.c1[piece].value = k.c1[piece]
-        self.t0_shifted.value = k.t0 - k.t2 * k.t_ref
-        self.t1.value = k.t1
+        if self.two_segments:
+            self.t0_shifted.value = k.t_mid - k.t2 * k.t_ref
+            self.t1.value = k.t1_hi
+            self.t1_lo.value = k.t1_lo
+        else:
+            self.t0_shifted.value = k.t0 - k.t2 * k.t_ref
+            self.t1.value = k.t1
         self.t2.value = k.t2
         self.alpha_lo.value = k.alpha_lo
         self.alpha_hi.value = k.alpha_hi

@@ -76,6 +76,9 @@ class SequentialSettings:
         Number of departure-date windows over which every edge is replicated, each with
         its own reference (:func:`~sdc_cvx.edges.preoptimize_windows`); default
         :func:`default_date_windows`.  1 is the paper's single reference per edge.
+    duration_model : {"secant", "two_segments"}
+        The paper's secant duration (Eq. 17-18) or its two half-segments (Fig. 14),
+        tighter at the cost of one more binary per edge (see ``benchmarks``).
     """
 
     alpha_km: float = 50.0
@@ -88,6 +91,7 @@ class SequentialSettings:
     max_confirmations: int = 3
     initial_retries: int = 3
     date_windows: int | None = None
+    duration_model: str = "secant"
 
 
 def edge_geometry(edges: pd.DataFrame, catalog: Catalog, mission: Mission) -> EdgeGeometry:
@@ -176,6 +180,7 @@ class _Driver:
             tmax_days=mission.tmax_days, deorbit_days=mission.deorbit_days,
             min_transfer_days=mission.min_transfer_days,
             operations_dv_mps=mission.operations_dv_mps,
+            duration_model=settings.duration_model,
         )  # fmt: skip
         self.timings["build_s"] = time.perf_counter() - start
         m = len(self.kept)

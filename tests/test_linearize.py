@@ -79,3 +79,18 @@ def test_trust_interval_stays_on_its_side_and_in_the_band(setup):
         days = geometry.duration_days(a, k.t_ref)
         assert np.all(np.isfinite(days[ok]) & (days[ok] <= 365.25 + 1e-6))
     assert np.all(k.alpha_lo[ok] <= 0) and np.all(k.alpha_hi[ok] >= 0)
+
+
+def test_two_half_segments_pass_through_the_reference_and_over_estimate(setup):
+    """Fig. 14: exact at alpha = 0 and at both ends, above the true convex duration between."""
+    geometry, k = setup
+    ok = k.available
+    true_at_ref = geometry.duration_days(k.a_ref, k.t_ref)
+    assert np.allclose(k.duration(0.0, k.t_ref, two_segments=True)[ok], true_at_ref[ok])
+    for frac in np.linspace(0.0, 1.0, 21):
+        alpha = k.alpha_lo + frac * (k.alpha_hi - k.alpha_lo)
+        true = geometry.duration_days(k.a_ref + alpha * 1e3, k.t_ref)
+        halves = k.duration(alpha, k.t_ref, two_segments=True)
+        secant = k.duration(alpha, k.t_ref)
+        assert np.all(halves[ok] >= true[ok] - 1e-6)
+        assert np.all(halves[ok] <= secant[ok] + 1e-6)  # never looser than one secant

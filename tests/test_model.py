@@ -18,7 +18,8 @@ def coefficients(costs, durations=None, tmax=100.0):
     durations = zero if durations is None else np.asarray(durations, dtype=float)
     return Coefficients(
         a_ref=np.full(m, 7e6), c0=np.stack([costs, costs]), c1=np.zeros((2, m)),
-        t0=durations, t1=zero, t2=zero, t_ref=zero, alpha_lo=zero, alpha_hi=zero,
+        t0=durations, t1=zero, t_mid=durations, t1_lo=zero, t1_hi=zero, t2=zero, t_ref=zero,
+        alpha_lo=zero, alpha_hi=zero,
         depart_lo=zero, depart_hi=np.full(m, tmax), available=np.ones(m, dtype=bool),
     )  # fmt: skip
 

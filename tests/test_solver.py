@@ -141,3 +141,12 @@ def test_minimum_transfer_duration_holds_in_the_returned_plan(paper_solution):
     assert all(leg.duration_days >= 75.0 - 1e-6 for leg in sol.legs)
     assert sol.total_dv_mps >= paper_solution.total_dv_mps - 0.05  # a tighter mission
     check_legs_against_physics(sol, Catalog.paper_case(), mission)
+
+
+def test_two_half_segment_duration_model_reaches_the_same_plan(paper_solution):
+    from sdc_cvx import SequentialSettings
+
+    sol = solve(settings=SequentialSettings(duration_model="two_segments"))
+    assert sol.path == paper_solution.path
+    assert sol.total_dv_mps == pytest.approx(paper_solution.total_dv_mps, abs=0.5)
+    check_legs_against_physics(sol, Catalog.paper_case(), Mission())
