@@ -1,0 +1,700 @@
+"""Figures of a planned mission: the paper's Fig. 17, 18, 19 and Table 7 as pictures.
+
+Every function returns a :class:`matplotlib.figure.Figure` built with the
+object-oriented API only (no pyplot, no global state), so it works headless and
+in threads; :func:`save_figures` writes them all atomically.
+
+The mission timeline drawn here is the one of :func:`~sdc_cvx.solution.evaluate_plan`:
+the vehicle is at the first debris at t = 0; leg k leaves at ``departure_day``, makes a
+Hohmann transfer (instantaneous at this scale) to its circular drift orbit
+(``drift_alt_km``, ``drift_inc_deg``), coasts ``duration_days`` while J2 turns its RAAN at
+the drift orbit's rate (Eq. 8), then transfers to the target debris, where operations
+last ``mission.deorbit_days`` before the next departure.
+
+All RAAN rates are recomputed from the catalog elements with the mission's J2
+(``solution.mission.j2``), the same model the solver used, so the plotted RAAN gaps
+close exactly at each arrival.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+from matplotlib import colormaps
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator
+
+from .catalog import Catalog
+from .orbits import R_EARTH, SECONDS_PER_DAY
+from .solution import Leg, Solution
+from .transfer import NodeOrbits, drift_rate
+
+__all__ = [
+    "FIGURE_NAMES",
+    "FIGURE_SIZE",
+    "SUPPORTED_FORMATS",
+    "plot_cost",
+    "plot_iterations",
+    "plot_orbits",
+    "plot_raan",
+    "raan_gap_history",
+    "save_figures",
+    "vehicle_altitude",
+]
+
+FIGURE_SIZE = (8.0, 4.5)
+"""Size of every figure [inch]: readable at report width."""
+
+FIGURE_NAMES = ("orbits", "raan", "cost", "iterations")
+"""File stems written by :func:`save_figures`, in order."""
+
+SUPPORTED_FORMATS = ("png", "svg", "pdf")
+"""File formats :func:`save_figures` accepts."""
+
+ARROW = "\u2192"
+_TITLE_SIZE = 12
+_LABEL_SIZE = 11
+_TICK_SIZE = 10
+_NOTE_SIZE = 9
+_RAAN_SAMPLES = 241
+_VEHICLE_COLOR = "#1a1a1a"
+_DEBRIS_COLOR = "#7f7f7f"
+_BEFORE_COLOR = "#a6bddb"
+_AFTER_COLOR = "#08519c"
+_LIMIT_COLOR = "#d62728"
+
+
+# ---------------------------------------------------------------------- helpers
+def _new_figure(**subplot_kw) -> tuple[Figure, object]:
+    """A constrained-layout figure of :data:`FIGURE_SIZE` with one axes."""
+    fig = Figure(figsize=FIGURE_SIZE, layout="constrained")
+    ax = fig.add_subplot(**subplot_kw)
+    ax.tick_params(labelsize=_TICK_SIZE)
+    return fig, ax
+
+
+def _leg_color(k: int):
+    """Colour of leg ``k`` (the same in every figure)."""
+    return colormaps["tab10"](k % 10)
+
+
+def _leg_name(leg: Leg) -> str:
+    return f"{leg.from_id}{ARROW}{leg.to_id}"
+
+
+def _path_name(path: Sequence[str]) -> str:
+    return ARROW.join(str(node) for node in path)
+
+
+def _wrap_deg(angle):
+    """Angle [deg] wrapped into (-180, 180]."""
+    return 180.0 - np.mod(180.0 - np.asarray(angle, dtype=float), 360.0)
+
+
+def _break_wraps(values: np.ndarray) -> np.ndarray:
+    """Insert NaN where a wrapped angle jumps by more than 180 deg, so no line crosses the plot."""
+    values = np.asarray(values, dtype=float)
+    jumps = np.flatnonzero(np.abs(np.diff(values)) > 180.0)
+    return np.insert(values, jumps + 1, np.nan) if jumps.size else values
+
+
+def _positions(solution: Solution, catalog: Catalog) -> dict[str, int]:
+    """Catalog position of every debris of the solution's path and legs."""
+    index = {debris: pos for pos, debris in enumerate(catalog.ids)}
+    wanted = list(solution.path)
+    for leg in (*solution.legs, *solution.initial_legs):
+        wanted += [leg.from_id, leg.to_id]
+    missing = sorted({debris for debris in wanted if debris not in index})
+    if missing:
+        raise ValueError(
+            f"debris {', '.join(missing)} of the solution are not in the catalog "
+            f"({catalog.source}); plot a solution with the catalog it was solved for"
+        )
+    return index
+
+
+def _altitudes_km(catalog: Catalog) -> np.ndarray:
+    return (catalog.a_m - R_EARTH) / 1000.0
+
+
+def _end_day(solution: Solution) -> float:
+    """End of the mission [days]: last arrival plus the operations there."""
+    if not solution.legs:
+        return float(solution.mission.deorbit_days)
+    last = solution.legs[-1]
+    return last.departure_day + last.duration_days + solution.mission.deorbit_days
+
+
+def vehicle_altitude(solution: Solution, catalog: Catalog) -> tuple[np.ndarray, np.ndarray]:
+    """Altitude of the vehicle over the mission, as the corners of a step line.
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for.
+
+    Returns
+    -------
+    days, altitude_km : ndarray
+        Mission time [days after t0] and altitude [km]: the debris altitude while at a
+        debris, the drift altitude while drifting, vertical steps at the (instantaneous)
+        Hohmann transfers.
+    """
+    index = _positions(solution, catalog)
+    altitude = _altitudes_km(catalog)
+    first = solution.legs[0].from_id if solution.legs else solution.path[0]
+    days, alts = [0.0], [altitude[index[first]]]
+    for leg in solution.legs:
+        arrival = leg.departure_day + leg.duration_days
+        days += [leg.departure_day, leg.departure_day, arrival, arrival]
+        alts += [altitude[index[leg.from_id]], leg.drift_alt_km, leg.drift_alt_km]
+        alts += [altitude[index[leg.to_id]]]
+    end = _end_day(solution)
+    if end > days[-1]:
+        days.append(end)
+        alts.append(alts[-1])
+    return np.asarray(days), np.asarray(alts)
+
+
+def raan_gap_history(
+    solution: Solution, catalog: Catalog, samples: int = _RAAN_SAMPLES
+) -> list[tuple[np.ndarray, np.ndarray]]:
+    """RAAN of the vehicle minus RAAN of its next target during each leg (paper Fig. 18).
+
+    Vehicle RAAN = origin debris RAAN at departure + drift-orbit rate x elapsed time;
+    target RAAN = its RAAN at t0 + its rate x t (Eq. 7-9, rates with ``solution.mission.j2``).
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for.
+    samples : int
+        Points per leg, departure and arrival included.
+
+    Returns
+    -------
+    list of (days, gap_deg)
+        One pair per leg: mission time [days after t0] and the difference [deg] wrapped
+        into (-180, 180]; it is 0 at arrival.
+    """
+    index = _positions(solution, catalog)
+    j2 = solution.mission.j2
+    orbits = NodeOrbits.from_elements(
+        catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad, j2=j2
+    )
+    raan0 = np.degrees(orbits.raan)
+    rate = np.degrees(orbits.rate) * SECONDS_PER_DAY  # deg/day
+    history = []
+    for leg in solution.legs:
+        origin, target = index[leg.from_id], index[leg.to_id]
+        rate_drift = (
+            np.degrees(drift_rate(leg.drift_a_km * 1000.0, np.radians(leg.drift_inc_deg), j2=j2))
+            * SECONDS_PER_DAY
+        )
+        days = leg.departure_day + np.linspace(0.0, leg.duration_days, samples)
+        vehicle = raan0[origin] + rate[origin] * leg.departure_day
+        vehicle = vehicle + rate_drift * (days - leg.departure_day)
+        gap = _wrap_deg(vehicle - (raan0[target] + rate[target] * days))
+        history.append((days, gap))
+    return history
+
+
+# ---------------------------------------------------------------------- Fig. 17
+def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
+    """Altitude of the vehicle over the mission: the paper's Fig. 17 ("optimal path orbits").
+
+    A step line (gid ``"vehicle"``) at the debris altitude while the vehicle is at a
+    debris and at the drift altitude while it drifts, with vertical steps at the
+    Hohmann transfers; each drift orbit is over-drawn in its leg's colour (gid
+    ``"drift-k"``, k from 1) and annotated with the leg (``5→8``), its altitude and its
+    inclination.  The altitude of each selected debris is a dashed reference line
+    labelled at the right, and the duration limit T_max a dotted vertical line.
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for (debris altitudes).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        x: mission time [days]; y: altitude [km].
+    """
+    index = _positions(solution, catalog)
+    altitude = _altitudes_km(catalog)
+    fig, ax = _new_figure()
+    days, alts = vehicle_altitude(solution, catalog)
+
+    debris_alts = {debris: float(altitude[index[debris]]) for debris in solution.path}
+    every = np.concatenate([alts, list(debris_alts.values())])
+    low, high = float(np.min(every)), float(np.max(every))
+    span = max(high - low, 10.0)
+    ax.set_ylim(low - 0.2 * span, high + 0.08 * span)
+    end = max(_end_day(solution), solution.mission.tmax_days)
+    ax.set_xlim(-0.015 * end, end * 1.015)  # transfers at t = 0 and at the end stay visible
+
+    for alt in debris_alts.values():
+        ax.axhline(alt, color=_DEBRIS_COLOR, linestyle="--", linewidth=0.8, zorder=1)
+    _label_debris_lines(ax, debris_alts)
+
+    ax.plot(
+        days, alts, color=_VEHICLE_COLOR, linewidth=1.3, label="vehicle", gid="vehicle", zorder=3
+    )
+    for k, leg in enumerate(solution.legs):
+        start, stop = leg.departure_day, leg.departure_day + leg.duration_days
+        color = _leg_color(k)
+        ax.axvspan(start, stop, color=color, alpha=0.08, linewidth=0, zorder=0)
+        ax.plot(
+            [start, stop],
+            [leg.drift_alt_km] * 2,
+            color=color,
+            linewidth=3.5,
+            solid_capstyle="butt",
+            gid=f"drift-{k + 1}",
+            zorder=4,
+        )
+        ax.annotate(
+            f"{_leg_name(leg)}\n{leg.drift_alt_km:.0f} km, {leg.drift_inc_deg:.2f}\u00b0",
+            xy=(0.5 * (start + stop), leg.drift_alt_km),
+            xytext=(0, -5),
+            textcoords="offset points",
+            ha="center",
+            va="top",
+            fontsize=_NOTE_SIZE,
+            color=color,
+            fontweight="bold",
+            bbox={"boxstyle": "square,pad=0.1", "facecolor": "white", "alpha": 0.6, "linewidth": 0},
+        )
+    tmax = solution.mission.tmax_days
+    ax.axvline(tmax, color=_LIMIT_COLOR, linestyle=":", linewidth=1.2, zorder=2)
+    ax.annotate(
+        f"T$_{{max}}$ = {tmax:g} d",
+        xy=(tmax, 1.0),
+        xycoords=ax.get_xaxis_transform(),
+        xytext=(-3, -3),
+        textcoords="offset points",
+        ha="right",
+        va="top",
+        fontsize=_NOTE_SIZE,
+        color=_LIMIT_COLOR,
+    )
+
+    proxies = [
+        Line2D([], [], color=_VEHICLE_COLOR, linewidth=1.3, label="vehicle"),
+        Line2D(
+            [], [], color=_leg_color(0), linewidth=3.5, label="drift orbit (one colour per leg)"
+        ),
+        Line2D([], [], color=_DEBRIS_COLOR, linestyle="--", linewidth=0.8, label="debris orbit"),
+    ]
+    ax.legend(
+        handles=proxies,
+        fontsize=_NOTE_SIZE,
+        loc="upper center",
+        ncols=3,
+        bbox_to_anchor=(0.5, -0.14),
+        frameon=False,
+    )
+    ax.set_xlabel("mission time [days]", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("altitude [km]", fontsize=_LABEL_SIZE)
+    ax.set_title(
+        f"Vehicle orbits along the path {_path_name(solution.path)} (paper Fig. 17)",
+        fontsize=_TITLE_SIZE,
+    )
+    ax.grid(True, axis="x", linewidth=0.4, alpha=0.5)
+    return fig
+
+
+def _label_debris_lines(ax, debris_alts: dict[str, float]) -> None:
+    """Label the debris reference lines in the right margin, spread so labels never overlap."""
+    if not debris_alts:
+        return
+    bottom, top = ax.get_ylim()
+    order = sorted(debris_alts, key=debris_alts.get)
+    wanted = np.array([(debris_alts[d] - bottom) / (top - bottom) for d in order])
+    gap = 0.105  # axes fraction between label centres: two 9 pt lines on a ~3.2 in axes
+    placed = wanted.copy()
+    for k in range(1, len(placed)):
+        placed[k] = max(placed[k], placed[k - 1] + gap)
+    overflow = placed[-1] - 1.0
+    if overflow > 0:  # shift down what went past the top, keeping the gaps
+        placed -= overflow
+        for k in range(len(placed) - 2, -1, -1):
+            placed[k] = min(placed[k], placed[k + 1] - gap)
+    for debris, y_wanted, y_placed in zip(order, wanted, placed, strict=True):
+        ax.annotate(
+            f"debris {debris}\n{debris_alts[debris]:.0f} km",
+            xy=(1.0, y_wanted),
+            xycoords="axes fraction",
+            xytext=(1.015, y_placed),
+            textcoords="axes fraction",
+            va="center",
+            ha="left",
+            fontsize=_NOTE_SIZE,
+            color="#404040",
+            linespacing=0.95,
+            annotation_clip=False,
+            arrowprops={"arrowstyle": "-", "color": _DEBRIS_COLOR, "linewidth": 0.6}
+            if abs(y_placed - y_wanted) > 0.01
+            else None,
+        )
+
+
+# ---------------------------------------------------------------------- Fig. 18
+def plot_raan(solution: Solution, catalog: Catalog) -> Figure:
+    """RAAN correction during each leg: the paper's Fig. 18.
+
+    For leg k (line gid ``"raan-leg-k"``, k from 1, labelled ``5→8``): RAAN of the
+    vehicle minus RAAN of the leg's target [deg], wrapped into (-180, 180], from the
+    departure to the arrival.  Vehicle RAAN = origin debris' RAAN at departure +
+    drift-orbit J2 rate x elapsed time; target RAAN = its RAAN at t0 + its rate x t.
+    The gap reaches 0 at each arrival (round marker); the departure is a square.
+    Wrap-arounds are broken with NaN so no line crosses the plot.
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for (RAANs at t0, elements for the rates).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        x: mission time [days]; y: RAAN difference [deg].
+    """
+    fig, ax = _new_figure()
+    ax.axhline(0.0, color=_VEHICLE_COLOR, linewidth=0.8, zorder=1)
+    for k, (leg, (days, gap)) in enumerate(
+        zip(solution.legs, raan_gap_history(solution, catalog), strict=True)
+    ):
+        color = _leg_color(k)
+        broken = _break_wraps(gap)
+        if broken.size != gap.size:  # keep x and y aligned around the inserted NaN
+            jumps = np.flatnonzero(np.abs(np.diff(gap)) > 180.0)
+            days = np.insert(days, jumps + 1, np.nan)
+        label = f"{_leg_name(leg)}  (drift {leg.drift_alt_km:.0f} km, {leg.duration_days:.1f} d)"
+        ax.plot(
+            days, broken, color=color, linewidth=2.0, label=label, gid=f"raan-leg-{k + 1}", zorder=3
+        )
+        ax.plot(days[0], broken[0], marker="s", color=color, markersize=5, zorder=4)
+        ax.plot(
+            days[-1],
+            broken[-1],
+            marker="o",
+            color=color,
+            markersize=6,
+            zorder=4,
+            markeredgecolor="white",
+        )
+        ax.axvline(leg.departure_day, color=_DEBRIS_COLOR, linestyle=":", linewidth=0.7)
+    end = max(_end_day(solution), 1.0)
+    ax.set_xlim(-0.015 * end, end * 1.015)
+    ax.set_xlabel("mission time [days]", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("\u03a9$_{vehicle}$ \u2212 \u03a9$_{target}$ [deg]", fontsize=_LABEL_SIZE)
+    ax.set_title("RAAN correction on the drift orbits (paper Fig. 18)", fontsize=_TITLE_SIZE)
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    if solution.legs:
+        ax.legend(fontsize=_NOTE_SIZE, title="leg", title_fontsize=_NOTE_SIZE, loc="best")
+    return fig
+
+
+# ---------------------------------------------------------------------- Fig. 19
+def plot_cost(solution: Solution) -> Figure:
+    """ΔV per leg before and after optimisation: the paper's Fig. 19.
+
+    Grouped bars per leg index 1..n-1: ``solution.initial_legs`` (the first
+    iteration's plan, "before optimisation") and ``solution.legs`` (the re-optimised
+    plan, "after"), each bar labelled with its value [m/s]; the totals are in the
+    legend.  The tick under each group names the leg (``leg 1`` and ``5→8``); when
+    the two plans follow different paths, each bar gets its own ``from→to`` right
+    under it (minor tick labels) and the group only its index.
+
+    Parameters
+    ----------
+    solution : Solution
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        x: leg; y: ΔV [m/s].
+    """
+    fig, ax = _new_figure()
+    before, after = list(solution.initial_legs), list(solution.legs)
+    count = max(len(before), len(after))
+    x = np.arange(1, count + 1)
+    width = 0.38 if before else 0.6
+    series = []
+    if before:
+        total = sum(leg.dv_mps for leg in before)
+        series.append(
+            (
+                before,
+                -width / 2,
+                _BEFORE_COLOR,
+                f"before optimisation ({_path_name(_legs_path(before))}): {total:.1f} m/s",
+            )
+        )
+    total = sum(leg.dv_mps for leg in after)
+    series.append(
+        (
+            after,
+            width / 2 if before else 0.0,
+            _AFTER_COLOR,
+            f"after optimisation ({_path_name(_legs_path(after))}): {total:.1f} m/s",
+        )
+    )
+    for legs, shift, color, label in series:
+        bars = ax.bar(
+            x[: len(legs)] + shift,
+            [leg.dv_mps for leg in legs],
+            width,
+            color=color,
+            edgecolor="#303030",
+            linewidth=0.5,
+            label=label,
+        )
+        ax.bar_label(bars, fmt="%.1f", fontsize=_NOTE_SIZE, padding=2)
+
+    same_path = [_leg_name(leg) for leg in before] == [_leg_name(leg) for leg in after]
+    if not before or same_path:
+        ax.set_xticks(x, [f"leg {k + 1}\n{_leg_name(after[k])}" for k in range(count)])
+    else:  # each bar's own from→to right under it, the leg index below
+        ax.set_xticks(x, [f"leg {k + 1}" for k in range(count)])
+        ax.tick_params(axis="x", which="major", length=0, pad=20)
+        positions, names = [], []
+        for legs, shift, *_ in series:
+            positions += list(x[: len(legs)] + shift)
+            names += [_leg_name(leg) for leg in legs]
+        ax.set_xticks(positions, names, minor=True)
+        ax.tick_params(axis="x", which="minor", length=3, labelsize=_NOTE_SIZE)
+    ax.set_xlim(0.4, count + 0.6)
+    top = max([leg.dv_mps for leg in before + after], default=1.0)
+    ax.set_ylim(0.0, top * 1.32)
+    ax.set_xlabel("leg", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("\u0394V [m/s]", fontsize=_LABEL_SIZE)
+    ax.set_title("Mission cost before and after optimisation (paper Fig. 19)", fontsize=_TITLE_SIZE)
+    ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
+    ax.set_axisbelow(True)
+    ax.legend(
+        fontsize=_NOTE_SIZE, title="total \u0394V", title_fontsize=_NOTE_SIZE, loc="upper right"
+    )
+    return fig
+
+
+def _legs_path(legs: Sequence[Leg]) -> list[str]:
+    return [legs[0].from_id, *(leg.to_id for leg in legs)] if legs else []
+
+
+# ---------------------------------------------------------------------- Table 7
+def plot_iterations(solution: Solution) -> Figure:
+    """The sequential linearisation's history: the paper's Table 7 as a picture.
+
+    Left axis: linearised and true ΔV [m/s] of each iteration's plan; right axis
+    (``fig.axes[1]``): its true duration [days] with the T_max limit as a dotted
+    line.  Iterations whose path differs from the previous one are marked by a
+    vertical line and their new path; the first path is in the bottom-left box.
+    Records with a missing value (an iteration that found no path) are skipped for
+    that series.
+
+    Parameters
+    ----------
+    solution : Solution
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        x: iteration; y (left): ΔV [m/s]; y (right): duration [days].
+    """
+    fig, ax = _new_figure()
+    right = ax.twinx()
+    right.tick_params(labelsize=_TICK_SIZE)
+    records = solution.iterations
+
+    def series(attribute):
+        pairs = [(r.iteration, getattr(r, attribute)) for r in records]
+        pairs = [(i, v) for i, v in pairs if v is not None and np.isfinite(v)]
+        return [i for i, _ in pairs], [v for _, v in pairs]
+
+    handles = []
+    handles += ax.plot(
+        *series("dv_linearized_mps"),
+        marker="s",
+        markersize=5,
+        linestyle="--",
+        color="#6baed6",
+        label="\u0394V linearised",
+        gid="dv-linearized",
+    )
+    handles += ax.plot(
+        *series("dv_true_mps"),
+        marker="o",
+        markersize=5,
+        color=_AFTER_COLOR,
+        label="\u0394V true",
+        gid="dv-true",
+    )
+    handles += right.plot(
+        *series("duration_true_days"),
+        marker="^",
+        markersize=5,
+        color="#2ca02c",
+        label="duration (true)",
+        gid="duration",
+    )
+    tmax = solution.mission.tmax_days
+    handles.append(
+        right.axhline(
+            tmax,
+            color=_LIMIT_COLOR,
+            linestyle=":",
+            linewidth=1.2,
+            label=f"T$_{{max}}$ = {tmax:g} d",
+            gid="tmax",
+        )
+    )
+
+    previous, first = None, None
+    for record in records:
+        if not record.path:
+            continue
+        path = tuple(record.path)
+        if previous is None:
+            first = (record.iteration, path)
+        elif path != previous:
+            ax.axvline(record.iteration - 0.5, color="#9467bd", linewidth=1.0, linestyle="-.")
+            ax.annotate(
+                f"path \u2192 {_path_name(path)}",
+                xy=(record.iteration - 0.5, 1.0),
+                xycoords=ax.get_xaxis_transform(),
+                xytext=(3, -3),
+                textcoords="offset points",
+                ha="left",
+                va="top",
+                fontsize=_NOTE_SIZE,
+                color="#9467bd",
+            )
+        previous = path
+    if first is not None:
+        ax.text(
+            0.01,
+            0.03,
+            f"path at iteration {first[0]}: {_path_name(first[1])}",
+            transform=ax.transAxes,
+            fontsize=_NOTE_SIZE,
+            va="bottom",
+            ha="left",
+            bbox={"boxstyle": "round", "facecolor": "white", "alpha": 0.85, "edgecolor": "#bbbbbb"},
+        )
+
+    durations = series("duration_true_days")[1] + [tmax]
+    d_low, d_high = min(durations), max(durations)
+    d_span = max(d_high - d_low, 1.0)
+    right.set_ylim(d_low - 0.1 * d_span, d_high + 0.1 * d_span)
+    dvs = series("dv_linearized_mps")[1] + series("dv_true_mps")[1]
+    if dvs:
+        v_low, v_high = min(dvs), max(dvs)
+        v_span = max(v_high - v_low, 1.0)
+        ax.set_ylim(v_low - 0.15 * v_span, v_high + 0.15 * v_span)
+
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("iteration", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("\u0394V [m/s]", fontsize=_LABEL_SIZE, color=_AFTER_COLOR)
+    right.set_ylabel("duration [days]", fontsize=_LABEL_SIZE, color="#2ca02c")
+    ax.set_title(
+        "Sequential linearisation: cost and duration per iteration (paper Table 7)",
+        fontsize=_TITLE_SIZE,
+    )
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    ax.legend(
+        handles=handles,
+        fontsize=_NOTE_SIZE,
+        loc="upper center",
+        ncols=len(handles),
+        bbox_to_anchor=(0.5, -0.14),
+        frameon=False,
+    )
+    return fig
+
+
+# ---------------------------------------------------------------------- saving
+def save_figures(
+    solution: Solution,
+    catalog: Catalog,
+    folder: str | os.PathLike,
+    formats: Sequence[str] = ("png",),
+    dpi: int = 150,
+) -> list[Path]:
+    """Write the four figures as ``{name}.{fmt}`` in ``folder``, atomically.
+
+    The names are :data:`FIGURE_NAMES`: ``orbits`` (Fig. 17), ``raan`` (Fig. 18),
+    ``cost`` (Fig. 19), ``iterations`` (Table 7).  Each file is written to a hidden
+    temporary file in ``folder`` and renamed over the target, so a reader never sees a
+    partial image and a failure leaves no temporary file behind.
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for.
+    folder : str or path-like
+        Output folder, created if missing.
+    formats : sequence of str
+        Any of :data:`SUPPORTED_FORMATS` (``"png"``, ``"svg"``, ``"pdf"``).
+    dpi : int
+        Resolution of raster formats [dots per inch].
+
+    Returns
+    -------
+    list of Path
+        The files written, figure by figure, format by format.
+
+    Raises
+    ------
+    ValueError
+        An unsupported format, or debris of the solution missing from the catalog.
+    """
+    if isinstance(formats, str):
+        formats = (formats,)
+    formats = tuple(dict.fromkeys(fmt.lower().lstrip(".") for fmt in formats))
+    unknown = [fmt for fmt in formats if fmt not in SUPPORTED_FORMATS]
+    if unknown or not formats:
+        raise ValueError(
+            f"unsupported figure format(s) {unknown or '(none given)'}; "
+            f"choose from {', '.join(SUPPORTED_FORMATS)}"
+        )
+    _positions(solution, catalog)  # fail before writing anything
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    builders = {
+        "orbits": lambda: plot_orbits(solution, catalog),
+        "raan": lambda: plot_raan(solution, catalog),
+        "cost": lambda: plot_cost(solution),
+        "iterations": lambda: plot_iterations(solution),
+    }
+    written = []
+    for name in FIGURE_NAMES:
+        fig = builders[name]()
+        for fmt in formats:
+            target = folder / f"{name}.{fmt}"
+            _save_atomic(fig, target, fmt, dpi)
+            written.append(target)
+    return written
+
+
+def _save_atomic(fig: Figure, target: Path, fmt: str, dpi: int) -> None:
+    handle, temp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            fig.savefig(stream, format=fmt, dpi=dpi)
+        os.chmod(temp, 0o644)  # mkstemp makes 0600 files; images are meant to be shared
+        os.replace(temp, target)
+    except BaseException:
+        Path(temp).unlink(missing_ok=True)
+        raise
