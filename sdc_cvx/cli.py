@@ -1,22 +1,46 @@
-"""Command line: ``python -m sdc_cvx`` (or ``sdc-cvx``)."""
+"""Command line: ``python -m sdc_cvx`` (or ``sdc-cvx``).
+
+Commands: ``run [SCENARIO.toml]``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``,
+``solvers``.  Exit codes: 0 success, 2 invalid input (nothing written), 3 infeasible
+mission, 4 solver failure.
+"""
 
 from __future__ import annotations
 
+import importlib.metadata
+import importlib.util
 import sys
 from pathlib import Path
 
 import click
+import cvxpy as cp
+import pandas as pd
 
-from .backends import SolverOptions
+from .backends import DEFAULT_BACKEND, SolverOptions
 from .catalog import Catalog, CatalogError
 from .edges import preoptimize
-from .mission import Mission, MissionError
+from .mission import MissionError
 from .output import new_run_folder, write_run
+from .scenario import MILP_BACKENDS, Scenario, ScenarioError, apply_overrides
 from .sequential import MissionInfeasible, SolverFailure, solve
 
 INPUT_ERROR = 2
 INFEASIBLE = 3
 SOLVER_FAILED = 4
+
+SOLVER_PACKAGES = {
+    "HIGHS": "highspy",
+    "SCIP": "pyscipopt",
+    "CBC": "cylp",
+    "GLPK_MI": "cvxopt",
+    "SCIPY": "scipy",
+    "GUROBI": "gurobipy",
+    "CPLEX": "cplex",
+    "XPRESS": "xpress",
+    "MOSEK": "mosek",
+    "COPT": "coptpy",
+}
+"""Python package behind each MILP backend that CVXPY can call."""
 
 
 def fail(message: str, code: int = INPUT_ERROR):
@@ -25,29 +49,54 @@ def fail(message: str, code: int = INPUT_ERROR):
     sys.exit(code)
 
 
-def load_catalog(path) -> Catalog:
-    """The catalog at ``path``, or the paper's Table 5 when ``path`` is None."""
+def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
+    """The scenario file (or the paper case) with the command-line values applied."""
     try:
-        return Catalog.paper_case() if path is None else Catalog.from_csv(path)
-    except CatalogError as err:
+        scenario = Scenario() if scenario_file is None else Scenario.load(scenario_file)
+        return apply_overrides(scenario, overrides, origin="command line")
+    except ScenarioError as err:
         fail(str(err))
 
 
-def make_mission(**fields) -> Mission:
-    """A validated mission from the options that were given (others keep their defaults)."""
+def read_catalog(scenario: Scenario) -> Catalog:
+    """The scenario's catalog, validated; exit 2 with its problems if invalid."""
     try:
-        return Mission(**{k: v for k, v in fields.items() if v is not None})
-    except MissionError as err:
+        return scenario.load_catalog()
+    except (CatalogError, ScenarioError) as err:
         fail(str(err))
 
 
-catalog_option = click.option(
-    "--catalog",
-    "catalog_path",
-    type=click.Path(dir_okay=False),
-    default=None,
-    help="Debris catalog CSV (id, a_km, e, inc_deg, raan_deg[, epoch]); default: paper Table 5.",
-)
+def check_backend(solver: SolverOptions) -> None:
+    """Exit 2 unless the chosen backend is installed."""
+    installed = set(cp.installed_solvers())
+    if solver.backend not in installed:
+        usable = ", ".join(name for name in MILP_BACKENDS if name in installed) or "none"
+        fail(
+            f"solver.backend {solver.backend!r} is not installed here; installed MILP "
+            f"backends: {usable} (see 'sdc-cvx solvers')"
+        )
+
+
+def scenario_argument(command):
+    return click.argument("scenario_file", metavar="[SCENARIO.toml]", required=False,
+                          type=click.Path(dir_okay=False))(command)  # fmt: skip
+
+
+def catalog_options(command):
+    command = click.option(
+        "--format",
+        "catalog_format",
+        default=None,
+        help="Catalog format: csv (tle, omm, gtoc9 are not supported yet) [from the extension].",
+    )(command)
+    return click.option(
+        "--catalog",
+        "catalog_path",
+        type=click.Path(dir_okay=False),
+        default=None,
+        help="Debris catalog (CSV: id, a_km, e, inc_deg, raan_deg[, epoch]) "
+        "[scenario's, else the paper's Table 5].",
+    )(command)
 
 
 @click.group()
@@ -56,8 +105,10 @@ def main():
     """Plan active debris removal missions (Cerf's method, CVXPY + MILP)."""
 
 
+# ---------------------------------------------------------------------- edges
 @main.command()
-@catalog_option
+@scenario_argument
+@catalog_options
 @click.option("--preopt-days", type=float, default=None, help="Transfer duration bound T0 [days].")
 @click.option("--dv-max", "dv_max_mps", type=float, default=None, help="Edge cost filter [m/s].")
 @click.option(
@@ -68,16 +119,23 @@ def main():
     help="Reference departure date of every edge [days after the start].",
 )
 @click.option("--all", "show_all", is_flag=True, help="Also list the dropped edges and why.")
-def edges(catalog_path, preopt_days, dv_max_mps, departure_day, show_all):
-    """Print the pre-optimised edge table (paper Part IV-B) as CSV on stdout."""
-    catalog = load_catalog(catalog_path)
-    mission = make_mission(preopt_days=preopt_days, dv_max_mps=dv_max_mps)
-    table = preoptimize(catalog, mission, departure_day=departure_day)
+def edges(scenario_file, catalog_path, catalog_format, preopt_days, dv_max_mps, departure_day,
+          show_all):  # fmt: skip
+    """Print the pre-optimised edge table (paper Part IV-B) as CSV on stdout.
+
+    SCENARIO.toml (optional) gives the catalog and mission; the options override it.
+    """
+    scenario = build_scenario(scenario_file, catalog_path=catalog_path,
+                              catalog_format=catalog_format, preopt_days=preopt_days,
+                              dv_max_mps=dv_max_mps)  # fmt: skip
+    catalog = read_catalog(scenario)
+    table = preoptimize(catalog, scenario.mission, departure_day=departure_day)
     frame = table.frame if show_all else table.kept
     click.echo(frame.to_csv(index=False, float_format="%.6g"), nl=False)
     click.echo(table.summary(), err=True)
 
 
+# ---------------------------------------------------------------------- run
 def print_iteration(record):
     """One progress line per iteration (to stderr)."""
     dv_lin = "-" if record.dv_linearized_mps is None else f"{record.dv_linearized_mps:8.1f}"
@@ -92,15 +150,24 @@ def print_iteration(record):
 
 
 @main.command()
-@catalog_option
+@scenario_argument
+@catalog_options
 @click.option("--n", type=int, default=None, help="Number of debris to remove [5].")
 @click.option("--tmax-days", type=float, default=None, help="Mission duration limit [365.25 days].")
 @click.option("--deorbit-days", type=float, default=None, help="Operations time per debris [0].")
 @click.option("--preopt-days", type=float, default=None, help="Pre-optimisation bound T0 [61].")
-@click.option("--backend", default="HIGHS", show_default=True, help="MILP backend (CVXPY name).")
+@click.option(
+    "--dv-max", "dv_max_mps", type=float, default=None, help="Edge cost filter [1000 m/s]."
+)
+@click.option(
+    "--min-transfer-days", type=float, default=None, help="Minimum transfer duration [0 days]."
+)
+@click.option("--backend", default=None, help=f"MILP backend, a CVXPY name [{DEFAULT_BACKEND}].")
 @click.option(
     "--time-limit", "time_limit_s", type=float, default=None, help="Time limit per MILP solve [s]."
 )
+@click.option("--mip-gap", type=float, default=None, help="Relative MIP gap [1e-6].")
+@click.option("--threads", type=int, default=None, help="Threads of the MILP backend.")
 @click.option(
     "--out",
     "out_dir",
@@ -109,30 +176,140 @@ def print_iteration(record):
     help="Output folder [a new sdc_run_* folder here].",
 )
 @click.option("--quiet", is_flag=True, help="No progress, only the summary.")
-def run(catalog_path, n, tmax_days, deorbit_days, preopt_days, backend, time_limit_s, out_dir,
-        quiet):  # fmt: skip
-    """Select, order and plan the transfers; write solution.json and tables to a run folder."""
-    catalog = load_catalog(catalog_path)
-    mission = make_mission(n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
-                           preopt_days=preopt_days)  # fmt: skip
+@click.option(
+    "--json",
+    "json_out",
+    is_flag=True,
+    help="Write the solution JSON to stdout (and nothing else there).",
+)
+@click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
+@click.option(
+    "--progress/--no-progress",
+    default=None,
+    hidden=True,
+    help="Force the per-iteration lines on or off [on when stderr is a terminal].",
+)
+def run(scenario_file, catalog_path, catalog_format, n, tmax_days, deorbit_days, preopt_days,
+        dv_max_mps, min_transfer_days, backend, time_limit_s, mip_gap, threads, out_dir, quiet,
+        json_out, svg, progress):  # fmt: skip
+    """Select, order and plan the transfers; write solution.json and tables to a run folder.
+
+    SCENARIO.toml (optional; default the paper's case) gives the catalog, mission and
+    solver; the options override it ([defaults] apply when neither sets a value).
+    The run folder also gets scenario.toml, the scenario as used.  Exit codes: 2
+    invalid input (nothing written), 3 infeasible mission, 4 solver failure.
+    """
+    scenario = build_scenario(
+        scenario_file, catalog_path=catalog_path, catalog_format=catalog_format, n=n,
+        tmax_days=tmax_days, deorbit_days=deorbit_days, preopt_days=preopt_days,
+        dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days, backend=backend,
+        time_limit_s=time_limit_s, mip_gap=mip_gap, threads=threads,
+    )  # fmt: skip
+    catalog = read_catalog(scenario)
+    mission, solver = scenario.mission, scenario.solver
     try:
-        solver = SolverOptions(backend=backend, time_limit_s=time_limit_s)
         mission.check_candidates(len(catalog))
-    except ValueError as err:
-        fail(str(err))
-    if not quiet:
-        click.echo(f"{catalog!r}: choosing {mission.n}, T_max {mission.tmax_days:g} days", err=True)
+    except MissionError as err:
+        fail(f"mission.n: {err} of {catalog.source}")
+    check_backend(solver)
+
+    def info(message: str) -> None:
+        if not quiet:
+            click.echo(message, err=True)
+
+    show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
+    info(f"{catalog!r}: choosing {mission.n}, T_max {mission.tmax_days:g} days, {solver.backend}")
     try:
         solution = solve(
-            catalog, mission, solver=solver, progress=None if quiet else print_iteration
+            catalog, mission, solver=solver, progress=print_iteration if show_progress else None
         )
     except MissionInfeasible as err:
         fail(f"infeasible mission: {err}", INFEASIBLE)
     except SolverFailure as err:
         fail(f"solver failure: {err}", SOLVER_FAILED)
-    folder = Path(out_dir) if out_dir else new_run_folder()
-    write_run(folder, solution, preoptimize(catalog, mission, departure_day=mission.deorbit_days))
-    click.echo(solution.summary())
+    edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+    folder = Path(out_dir) if out_dir else None
+    try:
+        folder = folder or new_run_folder()
+        write_run(folder, solution, edge_table, scenario_toml=scenario.to_toml(),
+                  catalog=catalog, formats=("png", "svg") if svg else ("png",))  # fmt: skip
+    except OSError as err:
+        fail(f"cannot write the run folder {folder or '.'}: {err.strerror or err}")
+    if json_out:
+        click.echo(solution.to_json())
+        info(solution.summary())
+        info(f"results   {folder}/solution.json")
+    else:
+        click.echo(solution.summary())
+        click.echo(f"results   {folder}/solution.json")
     if solution.status != "converged":
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
-    click.echo(f"results   {folder}/solution.json")
+
+
+# ---------------------------------------------------------------------- catalog
+def catalog_table(catalog: Catalog) -> str:
+    """The catalog as an aligned text table, in people's units."""
+    frame = catalog.frame
+    columns = {"id": frame["id"].astype(str)}
+    if "name" in frame.columns:
+        columns["name"] = frame["name"].astype(str)
+    formats = [
+        ("altitude [km]", "altitude_km", "{:.1f}"),
+        ("inclination [deg]", "inc_deg", "{:.4f}"),
+        ("RAAN [deg]", "raan_deg", "{:.4f}"),
+        ("J2 rate [deg/day]", "raan_rate_deg_per_day", "{:.6f}"),
+        ("e", "e", "{:.6f}"),
+        ("a_km", "a_km", "{:.3f}"),
+    ]
+    for title, column, fmt in formats:
+        columns[title] = frame[column].map(fmt.format)
+    return pd.DataFrame(columns).to_string(index=False)
+
+
+@main.command("catalog")
+@click.argument("file", metavar="[FILE]", required=False, type=click.Path(dir_okay=False))
+@click.option(
+    "--format",
+    "catalog_format",
+    default=None,
+    help="csv (tle, omm, gtoc9 are not supported yet) [from the extension].",
+)
+def catalog_command(file, catalog_format):
+    """Validate a debris catalog and print it as a table (default: the paper's Table 5)."""
+    scenario = build_scenario(None, catalog_path=file, catalog_format=catalog_format)
+    catalog = read_catalog(scenario)
+    click.echo(catalog_table(catalog))
+    start = "" if catalog.start is None else f", RAANs at {catalog.start.isoformat()}"
+    click.echo(f"{len(catalog)} debris from {catalog.source}{start}", err=True)
+
+
+# ---------------------------------------------------------------------- solvers
+def package_version(package: str) -> str | None:
+    """Version of an importable package, or None."""
+    try:
+        if importlib.util.find_spec(package) is None:
+            return None
+        return importlib.metadata.version(package)
+    except (ImportError, ValueError, importlib.metadata.PackageNotFoundError):
+        return None
+
+
+@main.command()
+def solvers():
+    """List the MILP backends CVXPY can use here, with their package versions."""
+    installed = set(cp.installed_solvers())
+    rows = [("backend", "installed", "package", "version")]
+    for name in MILP_BACKENDS:
+        package = SOLVER_PACKAGES[name]
+        rows.append(
+            (
+                name + (" *" if name == DEFAULT_BACKEND else ""),
+                "yes" if name in installed else "no",
+                package,
+                package_version(package) or "-",
+            )
+        )
+    widths = [max(len(row[k]) for row in rows) for k in range(len(rows[0]))]
+    for row in rows:
+        click.echo("  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)).rstrip())
+    click.echo(f"* default backend; cvxpy {importlib.metadata.version('cvxpy')}")

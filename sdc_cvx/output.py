@@ -7,7 +7,9 @@ import tempfile
 from datetime import datetime
 from pathlib import Path
 
+from .catalog import Catalog
 from .edges import EdgeTable
+from .plots import save_figures
 from .solution import Solution
 
 
@@ -37,8 +39,29 @@ def new_run_folder(parent: Path | str = ".") -> Path:
     raise FileExistsError(f"cannot create a new run folder under {parent}")
 
 
-def write_run(folder: Path | str, solution: Solution, edges: EdgeTable | None = None) -> list[Path]:
-    """Write ``solution.json``, ``legs.csv``, ``iterations.csv`` (and ``edges.csv``) to ``folder``.
+def write_run(
+    folder: Path | str,
+    solution: Solution,
+    edges: EdgeTable | None = None,
+    *,
+    scenario_toml: str | None = None,
+    catalog: Catalog | None = None,
+    formats: tuple[str, ...] = ("png",),
+) -> list[Path]:
+    """Write a run's files to ``folder``, each atomically, ``solution.json`` last.
+
+    Files: ``legs.csv``, ``iterations.csv``, ``edges.csv`` (if ``edges`` is given),
+    ``scenario.toml`` (if ``scenario_toml`` is given: the scenario as used), the
+    figures ``orbits``, ``raan``, ``cost``, ``iterations`` in each of ``formats`` (if
+    ``catalog`` is given, :func:`~sdc_cvx.plots.save_figures`), then
+    ``solution.json``, whose presence means the run is complete.
+
+    Parameters
+    ----------
+    catalog : Catalog, optional
+        The solution's catalog, needed by the orbit and RAAN figures.
+    formats : tuple of str
+        Figure formats (e.g. ``("png", "svg")``); empty for no figures.
 
     Returns
     -------
@@ -53,9 +76,13 @@ def write_run(folder: Path | str, solution: Solution, edges: EdgeTable | None = 
     }
     if edges is not None:
         files["edges.csv"] = edges.frame.to_csv(index=False)
-    files["solution.json"] = solution.to_json()  # last: its presence means the run is complete
+    if scenario_toml is not None:
+        files["scenario.toml"] = scenario_toml
     written = []
     for name, text in files.items():
         write_atomic(folder / name, text)
         written.append(folder / name)
-    return written
+    if catalog is not None and formats:
+        written += save_figures(solution, catalog, folder, formats=tuple(formats))
+    write_atomic(folder / "solution.json", solution.to_json())  # last: the run is complete
+    return written + [folder / "solution.json"]

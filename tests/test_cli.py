@@ -1,12 +1,17 @@
-"""Command line: run and edges, success and failure paths, files written."""
+"""Command line: run, edges, catalog, solvers; success and failure paths, files written."""
 
+import importlib.metadata
 import json
+from pathlib import Path
 
+import cvxpy as cp
 import pandas as pd
+import pytest
 from click.testing import CliRunner
 
 from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.cli import main
+from sdc_cvx.scenario import load
 
 
 def test_run_paper_case_writes_the_run_folder(tmp_path):
@@ -18,13 +23,23 @@ def test_run_paper_case_writes_the_run_folder(tmp_path):
     legs = pd.read_csv(tmp_path / "out" / "legs.csv")
     assert len(legs) == 4 and abs(legs["dv_mps"].sum() - data["total_dv_mps"]) < 1e-6
     assert len(pd.read_csv(tmp_path / "out" / "iterations.csv")) == len(data["iterations"])
+    for figure in ("orbits", "raan", "cost", "iterations"):  # paper Figs. 17-19, Table 7
+        png = (tmp_path / "out" / f"{figure}.png").read_bytes()
+        assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20_000
     assert not list((tmp_path / "out").glob(".*.tmp"))  # no temp files left behind
 
 
-def test_run_shows_progress_per_iteration(tmp_path):
+def test_run_shows_progress_per_iteration_when_forced(tmp_path):
+    result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3", "--progress"])
+    assert result.exit_code == 0, result.output
+    assert "it  0" in result.stderr and "it  0" not in result.stdout
+
+
+def test_run_shows_no_progress_when_stderr_is_not_a_terminal(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3"])
     assert result.exit_code == 0, result.output
-    assert "it  0" in result.output
+    assert "it  0" not in result.output and "choosing 3" in result.stderr
+    assert "path      " in result.stdout
 
 
 def test_run_infeasible_mission_exit_code_and_reason(tmp_path):
@@ -54,3 +69,182 @@ def test_edges_prints_csv():
     lines = result.stdout.strip().splitlines()
     kept = preoptimize(Catalog.paper_case(), Mission()).counts()["kept"]
     assert lines[0].startswith("from_id,to_id") and len(lines) == 1 + kept
+
+
+# ---------------------------------------------------------------------- scenario files
+def run_in(folder: Path, *args):
+    """``run`` invoked from ``folder`` (where a run folder would be created)."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(folder)
+        return CliRunner().invoke(main, ["run", *map(str, args)])
+
+
+def assert_nothing_written(folder: Path, inputs=("scenario.toml",)):
+    assert sorted(p.name for p in folder.iterdir()) == sorted(inputs)
+
+
+def assert_one_line_error(result, *parts):
+    assert result.exit_code == 2, result.output
+    assert result.stdout == ""
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ")
+    for part in parts:
+        assert part in lines[0]
+
+
+@pytest.mark.parametrize(
+    ("text", "parts"),
+    [
+        ("[mission]\nn = 5\ntmax_days = = 3\n", ["scenario.toml", "invalid TOML", "line 3"]),
+        ("[mission]\ntmax = 3\n", ["scenario.toml", "unknown key mission.tmax", "tmax_days"]),
+        ("[mission]\nn = true\n", ["mission.n must be an integer", "true (boolean)"]),
+        ("[solver]\nmip_gap = 2.0\n", ["solver.mip_gap must be in [0, 1)"]),
+        ('[catalog]\npath = "gone.csv"\n', ["catalog.path: file not found", "gone.csv"]),
+        ('[catalog]\npath = "scenario.toml"\nformat = "tle"\n', ["'tle' is not supported yet"]),
+    ],
+)
+def test_run_invalid_scenario_exits_2_and_writes_nothing(tmp_path, text, parts):
+    (tmp_path / "scenario.toml").write_text(text)
+    result = run_in(tmp_path, "scenario.toml")
+    assert_one_line_error(result, *parts)
+    assert_nothing_written(tmp_path)
+    result = run_in(tmp_path, "scenario.toml", "--out", tmp_path / "out")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "parts"),
+    [
+        (["--n", "1"], ["command line: mission.n must be >= 2"]),
+        (["--n", "12"], ["mission.n", "exceeds the 11 candidate debris"]),
+        (["--mip-gap", "-1"], ["solver.mip_gap"]),
+        (["--backend", "CLARABEL"], ["solver.backend must be a MILP backend"]),
+        (["--catalog", "gone.csv"], ["catalog.path: file not found", "gone.csv"]),
+        (["--catalog", "scenario.toml", "--format", "omm"], ["'omm' is not supported yet"]),
+        (["missing.toml"], ["missing.toml: file not found"]),
+    ],
+)
+def test_run_invalid_flags_exit_2_and_write_nothing(tmp_path, args, parts):
+    (tmp_path / "scenario.toml").write_text("")
+    result = run_in(tmp_path, *args)
+    assert_one_line_error(result, *parts)
+    assert_nothing_written(tmp_path)
+
+
+def test_run_backend_not_installed_exits_2(tmp_path):
+    missing = next((b for b in ("GUROBI", "CPLEX", "XPRESS", "COPT")
+                    if b not in cp.installed_solvers()), None)  # fmt: skip
+    if missing is None:
+        pytest.skip("every commercial backend is installed")
+    result = run_in(tmp_path, "--backend", missing.lower())
+    assert_one_line_error(result, f"'{missing}' is not installed", "HIGHS")
+    assert_nothing_written(tmp_path, ())
+
+
+def test_run_bad_catalog_from_scenario_writes_nothing(tmp_path):
+    (tmp_path / "bad.csv").write_text("id,a_km,e,inc_deg,raan_deg\n1,7000,2.5,98,10\n")
+    (tmp_path / "scenario.toml").write_text('[catalog]\npath = "bad.csv"\n')
+    result = run_in(tmp_path, "scenario.toml")
+    assert result.exit_code == 2 and "bad.csv" in result.stderr and "'e'" in result.stderr
+    assert_nothing_written(tmp_path, ("scenario.toml", "bad.csv"))
+
+
+def test_run_infeasible_scenario_exits_3_and_writes_nothing(tmp_path):
+    (tmp_path / "scenario.toml").write_text("[mission]\ntmax_days = 20.0\npreopt_days = 5.0\n")
+    result = run_in(tmp_path, "scenario.toml")
+    assert result.exit_code == 3
+    assert result.stderr.splitlines()[-1].startswith("error: infeasible mission: ")
+    assert_nothing_written(tmp_path)
+
+
+def test_run_scenario_with_flag_override(tmp_path):
+    (tmp_path / "scenario.toml").write_text(
+        "[mission]\nn = 5\npreopt_days = 61.0\n[solver]\ntime_limit_s = 60.0\n"
+    )
+    out = tmp_path / "out"
+    result = run_in(tmp_path, "scenario.toml", "--n", "4", "--out", out, "--quiet", "--svg")
+    assert result.exit_code == 0, result.output
+    used = load(out / "scenario.toml")
+    assert used.mission.n == 4 and used.solver.time_limit_s == 60.0 and used.catalog_path is None
+    assert "\nn = 4\n" in (out / "scenario.toml").read_text()
+    data = json.loads((out / "solution.json").read_text())
+    assert len(data["path"]) == 4 and data["mission"]["n"] == 4
+    assert not list(out.glob(".*.tmp"))
+
+
+def test_run_json_prints_only_the_solution_on_stdout(tmp_path):
+    result = CliRunner().invoke(main, ["run", "--n", "3", "--json", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)  # nothing else on stdout
+    assert len(data["path"]) == 3
+    assert data == json.loads((tmp_path / "solution.json").read_text())
+    assert "total dV" in result.stderr
+
+
+def test_run_example_scenario_writes_it_to_the_run_folder(tmp_path):
+    example = Path(__file__).resolve().parents[1] / "examples" / "paper.toml"
+    result = CliRunner().invoke(main, ["run", str(example), "--out", str(tmp_path), "--quiet"])
+    assert result.exit_code == 0, result.output
+    assert "5 -> 8 -> 2 -> 6 -> 10" in result.stdout
+    assert load(tmp_path / "scenario.toml") == load(example)
+
+
+# ---------------------------------------------------------------------- catalog
+def test_catalog_prints_the_paper_table():
+    result = CliRunner().invoke(main, ["catalog"])
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.strip().splitlines()
+    assert len(lines) == 12
+    for title in ("id", "altitude [km]", "inclination [deg]", "RAAN [deg]", "J2 rate [deg/day]"):
+        assert title in lines[0]
+    assert lines[1].split()[:5] == ["1", "652.4", "98.0000", "221.1000", "0.986206"]
+    assert "11 debris from paper Table 5" in result.stderr
+
+
+def test_catalog_of_a_file(tmp_path):
+    (tmp_path / "debris.csv").write_text(
+        "id,a_km,e,inc_deg,raan_deg\nA,7000,0.001,98,10\nB,7100,0.002,97,20\n"
+    )
+    result = CliRunner().invoke(main, ["catalog", str(tmp_path / "debris.csv")])
+    assert result.exit_code == 0, result.output
+    assert [line.split()[0] for line in result.stdout.splitlines()[1:]] == ["A", "B"]
+
+
+def test_catalog_bad_file_exits_2(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("id,a_km,e,inc_deg,raan_deg\n1,7000,0.001,98,10\n2,7100,2.5,98,20\n1,x,0,98,1\n")
+    result = CliRunner().invoke(main, ["catalog", str(bad)])
+    assert result.exit_code == 2 and result.stdout == ""
+    assert result.stderr.startswith("error: ") and "bad.csv" in result.stderr
+    assert "row 2" in result.stderr and "duplicate id" in result.stderr  # every problem
+    result = CliRunner().invoke(main, ["catalog", str(tmp_path / "gone.csv")])
+    assert_one_line_error(result, "file not found", "gone.csv")
+    result = CliRunner().invoke(main, ["catalog", str(bad), "--format", "gtoc9"])
+    assert_one_line_error(result, "'gtoc9' is not supported yet")
+
+
+# ---------------------------------------------------------------------- solvers
+def test_solvers_lists_highs_with_its_version():
+    result = CliRunner().invoke(main, ["solvers"])
+    assert result.exit_code == 0, result.output
+    rows = {line.split()[0]: line.split() for line in result.stdout.splitlines()[1:-1]}
+    assert set(rows) == {"HIGHS", "SCIP", "CBC", "GLPK_MI", "SCIPY", "GUROBI", "CPLEX",
+                         "XPRESS", "MOSEK", "COPT"}  # fmt: skip
+    assert rows["HIGHS"] == ["HIGHS", "*", "yes", "highspy", importlib.metadata.version("highspy")]
+    assert "default" in result.stdout.splitlines()[-1]
+
+
+# ---------------------------------------------------------------------- edges
+def test_edges_with_a_scenario_and_override(tmp_path):
+    (tmp_path / "scenario.toml").write_text("[mission]\npreopt_days = 30.0\ndv_max_mps = 900.0\n")
+    result = CliRunner().invoke(main, ["edges", str(tmp_path / "scenario.toml")])
+    assert result.exit_code == 0, result.output
+    kept = preoptimize(Catalog.paper_case(), Mission(preopt_days=30.0, dv_max_mps=900.0))
+    assert len(result.stdout.strip().splitlines()) == 1 + kept.counts()["kept"]
+    args = ["edges", str(tmp_path / "scenario.toml"), "--dv-max", "300"]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    fewer = preoptimize(Catalog.paper_case(), Mission(preopt_days=30.0, dv_max_mps=300.0))
+    assert len(result.stdout.strip().splitlines()) == 1 + fewer.counts()["kept"]
+    result = CliRunner().invoke(main, ["edges", str(tmp_path / "scenario.toml"), "--dv-max", "-1"])
+    assert_one_line_error(result, "mission.dv_max_mps must be > 0")

@@ -1,0 +1,513 @@
+"""Scenario files: a catalog, the mission parameters and the solver options in one TOML file.
+
+A scenario file has three tables, each optional::
+
+    [catalog]
+    path = "debris.csv"        # relative to the scenario file
+    format = "csv"             # csv | tle | omm | gtoc9; default from the extension
+    [mission]                  # exactly the fields of Mission
+    n = 5
+    tmax_days = 365.25
+    deorbit_days = 0.0
+    drift_altitude_km = [400.0, 1200.0]
+    preopt_days = 61.0
+    dv_max_mps = 1000.0
+    [solver]                   # exactly the fields of SolverOptions
+    backend = "HIGHS"
+    time_limit_s = 60.0
+    mip_gap = 1e-6
+
+A missing ``[catalog]`` table, or one without ``path``, means the paper's Table 5 bundled
+with the package.  Missing keys keep the defaults of :class:`Mission` and
+:class:`SolverOptions` (the paper's case, HiGHS).
+
+Every problem is reported in a :class:`ScenarioError` with a one-line message that names
+the file, the key as a dotted name (``mission.tmax_days``) and what is allowed.  Values
+are checked for type first (an integer is fine where a number is expected, a boolean or
+a string is not), then by the validation of :class:`Mission` and :class:`SolverOptions`
+themselves, whose messages are re-labelled with the dotted key.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import os
+import re
+import tomllib
+import typing
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import tomli_w
+
+from .backends import SolverOptions
+from .catalog import Catalog
+from .mission import Mission, MissionError
+
+__all__ = [
+    "CATALOG_FORMATS",
+    "EXTENSION_FORMATS",
+    "MILP_BACKENDS",
+    "READABLE_FORMATS",
+    "Scenario",
+    "ScenarioError",
+    "load",
+]
+
+CATALOG_FORMATS = ("csv", "tle", "omm", "gtoc9")
+"""Catalog formats a scenario may name."""
+
+_READERS: dict[str, Callable[[Path], Catalog]] = {"csv": Catalog.from_csv}
+READABLE_FORMATS = tuple(_READERS)
+"""Formats that can be read today (the others are recognised, and refused clearly)."""
+
+EXTENSION_FORMATS = {
+    ".csv": "csv",
+    ".tle": "tle",
+    ".3le": "tle",
+    ".2le": "tle",
+    ".txt": "tle",  # a GTOC9 debris_data.txt needs format = "gtoc9"
+    ".omm": "omm",
+    ".kvn": "omm",
+    ".xml": "omm",
+    ".json": "omm",
+}
+"""Catalog format assumed from the file extension when ``catalog.format`` is not given."""
+
+MILP_BACKENDS = (
+    "HIGHS",
+    "SCIP",
+    "CBC",
+    "GLPK_MI",
+    "SCIPY",
+    "GUROBI",
+    "CPLEX",
+    "XPRESS",
+    "MOSEK",
+    "COPT",
+)
+"""CVXPY solver names with MILP support that ``solver.backend`` may name."""
+
+PAPER_CASE = "the paper's Table 5 bundled with sdc_cvx"
+
+_TABLES = ("catalog", "mission", "solver")
+_CATALOG_KEYS = ("path", "format")
+_MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission))
+_SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
+_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS}
+_TYPES = {
+    "catalog": {"path": str, "format": str},
+    "mission": typing.get_type_hints(Mission),
+    "solver": typing.get_type_hints(SolverOptions),
+}
+
+
+class ScenarioError(ValueError):
+    """A scenario file (or an override) is invalid; the message is one line.
+
+    Attributes
+    ----------
+    problems : tuple of str
+        Every problem found, each naming the dotted key (``mission.n``).
+    """
+
+    def __init__(self, message: str, problems=()):
+        super().__init__(message)
+        self.problems = tuple(problems) or (message,)
+
+    @classmethod
+    def collect(cls, where: str, problems) -> ScenarioError:
+        """One error for all ``problems`` found in ``where`` (a file name, "overrides")."""
+        return cls(f"{where}: " + "; ".join(problems), problems)
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """What to solve and how: catalog, mission and solver options.
+
+    Build it with :meth:`load` (a TOML file) and change it with :meth:`with_overrides`;
+    both validate every value.  ``Scenario()`` is the paper's case with HiGHS.
+
+    Attributes
+    ----------
+    catalog_path : Path or None
+        Absolute path of the debris catalog; None for the paper's Table 5.
+    catalog_format : str
+        One of :data:`CATALOG_FORMATS` (``"csv"`` for the paper's table).
+    mission : Mission
+    solver : SolverOptions
+    source : Path or None
+        The scenario file read, if any.  Not compared: two scenarios with the same
+        content are equal wherever they were read from.
+    """
+
+    catalog_path: Path | None = None
+    catalog_format: str = "csv"
+    mission: Mission = field(default_factory=Mission)
+    solver: SolverOptions = field(default_factory=SolverOptions)
+    source: Path | None = field(default=None, compare=False)
+
+    # ------------------------------------------------------------------ reading
+    @classmethod
+    def load(cls, path: str | os.PathLike) -> Scenario:
+        """Read and validate a scenario TOML file.
+
+        Raises
+        ------
+        ScenarioError
+            Unreadable file, invalid TOML, unknown table or key, wrong type, value out
+            of range, missing catalog file or unsupported catalog format.
+        """
+        file = Path(path)
+        where = os.fspath(path)
+        try:
+            text = file.read_bytes().decode("utf-8")
+        except FileNotFoundError:
+            raise ScenarioError.collect(where, ["file not found"]) from None
+        except IsADirectoryError:
+            raise ScenarioError.collect(where, ["is a directory, not a scenario file"]) from None
+        except UnicodeDecodeError as exc:
+            raise ScenarioError.collect(
+                where, [f"not a UTF-8 text file (undecodable byte at offset {exc.start})"]
+            ) from None
+        except OSError as exc:
+            raise ScenarioError.collect(where, [f"not readable ({exc.strerror or exc})"]) from None
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ScenarioError.collect(where, [f"invalid TOML: {exc}"]) from None
+        source = file.resolve()
+        return _build(data, where, base=source.parent, source=source)
+
+    def with_overrides(self, **changes) -> Scenario:
+        """A copy with some values changed, validated like a file.
+
+        Keys are dotted names (``**{"mission.n": 4}``) or plain field names: the
+        fields of :class:`Mission` and :class:`SolverOptions` (``n=4``,
+        ``backend="SCIP"``) and ``catalog_path`` / ``catalog_format`` (or ``catalog``
+        / ``format``).  None means "not given" and changes nothing.  A relative
+        catalog path is taken from the current directory; changing the path without
+        the format chooses the format again from the extension.
+
+        Raises
+        ------
+        ScenarioError
+            Unknown key or any invalid value (the message names the dotted key).
+        """
+        return apply_overrides(self, changes, origin="overrides")
+
+    def load_catalog(self) -> Catalog:
+        """The debris catalog (the paper's Table 5 when ``catalog_path`` is None).
+
+        Raises
+        ------
+        CatalogError
+            The file fails the catalog's validation.
+        ScenarioError
+            The format cannot be read yet.
+        """
+        if self.catalog_path is None:
+            return Catalog.paper_case()
+        reader = _READERS.get(self.catalog_format)
+        if reader is None:
+            raise ScenarioError.collect(
+                self._where(), [_unsupported(self.catalog_format, self.catalog_path, chosen=False)]
+            )
+        return reader(self.catalog_path)
+
+    # ------------------------------------------------------------------ writing
+    def to_dict(self) -> dict:
+        """The scenario as nested dicts (``catalog``, ``mission``, ``solver``); None if unset."""
+        return {
+            "catalog": {
+                "path": None if self.catalog_path is None else str(self.catalog_path),
+                "format": self.catalog_format,
+            },
+            "mission": self.mission.to_dict(),
+            "solver": dataclasses.asdict(self.solver),
+        }
+
+    def to_toml(self) -> str:
+        """The scenario as used, every default filled in and the catalog path absolute.
+
+        ``Scenario.load`` of this text gives back an equal scenario.  Solver options
+        that are not set (None: no time limit, backend's threads and seed) are left
+        out, which means the same on reading; a ``mip_gap`` of None (the backend's own
+        gap) cannot be written in TOML and reads back as the default 1e-6.
+        """
+        data = self.to_dict()
+        lines = ["# sdc_cvx scenario, as used: every default filled in."]
+        if self.source is not None:
+            lines.append("# Read from " + os.fspath(self.source).replace("\n", " "))
+        for table, values in data.items():
+            lines += ["", f"[{table}]"]
+            if table == "catalog" and self.catalog_path is None:
+                lines.append(f"# no path: {PAPER_CASE}")
+                continue
+            unset = [key for key, value in values.items() if value is None]
+            lines += [f"{key} = {_toml_value(value)}" for key, value in values.items()
+                      if value is not None]  # fmt: skip
+            if unset:
+                lines.append(f"# not set (no limit / backend default): {', '.join(unset)}")
+        return "\n".join(lines) + "\n"
+
+    def _where(self) -> str:
+        return "scenario" if self.source is None else os.fspath(self.source)
+
+
+def load(path: str | os.PathLike) -> Scenario:
+    """Read and validate a scenario TOML file (see :meth:`Scenario.load`)."""
+    return Scenario.load(path)
+
+
+def apply_overrides(scenario: Scenario, changes: Mapping, origin: str = "overrides") -> Scenario:
+    """``scenario`` with ``changes`` applied (see :meth:`Scenario.with_overrides`).
+
+    ``origin`` starts the error message (e.g. ``"command line"``).
+    """
+    data = scenario.to_dict()
+    cwd = Path.cwd()
+    problems = []
+    format_given = any(
+        changes.get(k) is not None for k in ("catalog_format", "catalog.format", "format")
+    )
+    for name, value in changes.items():
+        if value is None:
+            continue
+        dotted = _dotted_name(name)
+        if dotted is None:
+            problems.append(f"unknown override {name!r}; {_allowed_overrides()}")
+            continue
+        table, key = dotted.split(".")
+        if dotted == "catalog.path":
+            if isinstance(value, str | os.PathLike):
+                value = os.fspath(cwd / Path(value).expanduser())
+            if not format_given:
+                data["catalog"].pop("format", None)  # choose it again from the extension
+        data[table][key] = value
+    if problems:
+        raise ScenarioError.collect(origin, problems)
+    if data["catalog"]["path"] is None:
+        del data["catalog"]["path"]
+    return _build(data, origin, base=cwd, source=scenario.source)
+
+
+# ---------------------------------------------------------------------- validation
+def _build(data: Mapping, where: str, *, base: Path, source: Path | None) -> Scenario:
+    """Validate the parsed tables and build the scenario, or raise every problem."""
+    problems: list[str] = []
+    tables = {}
+    for name, table in data.items():
+        if name not in _TABLES:
+            if isinstance(table, Mapping):
+                problems.append(
+                    f"unknown table [{name}]{_hint(name, _TABLES)}; "
+                    f"allowed tables: {', '.join(_TABLES)}"
+                )
+            else:
+                owner = [t for t in _TABLES if name in _KEYS[t]]
+                hint = f" (did you mean {owner[0]}.{name}?)" if owner else ""
+                problems.append(
+                    f"key {name!r} outside a table{hint}; "
+                    f"keys go in [catalog], [mission] or [solver]"
+                )
+        elif not isinstance(table, Mapping):
+            problems.append(f"{name} must be a table ([{name}]), got {_kind(table)}")
+        else:
+            tables[name] = _checked_table(name, table, problems)
+    catalog_path, catalog_format = _catalog(tables.get("catalog", {}), base, problems)
+    mission = _make(Mission, "mission", tables.get("mission", {}), problems)
+    solver = _make(SolverOptions, "solver", tables.get("solver", {}), problems)
+    if problems:
+        raise ScenarioError.collect(where, problems)
+    return Scenario(catalog_path, catalog_format, mission, solver, source)
+
+
+def _checked_table(table: str, values: Mapping, problems: list[str]) -> dict:
+    """The values of ``table`` with known keys and the right types (others reported)."""
+    allowed = _KEYS[table]
+    out = {}
+    for key, value in values.items():
+        dotted = f"{table}.{key}"
+        if key not in allowed:
+            problems.append(
+                f"unknown key {dotted}{_hint(key, allowed)}; "
+                f"allowed keys in [{table}]: {', '.join(allowed)}"
+            )
+            continue
+        checked, problem = _typed(value, _TYPES[table][key])
+        if problem:
+            problems.append(f"{dotted} must be {problem}, got {_show(value)}")
+        else:
+            out[key] = checked
+    return out
+
+
+def _typed(value, kind):
+    """``(converted value, None)`` or ``(None, expected type in words)``."""
+    args = typing.get_args(kind)
+    if type(None) in args:  # X | None: None (from to_dict or Python) keeps the default
+        if value is None:
+            return None, None
+        kind = next(arg for arg in args if arg is not type(None))
+    if kind is bool:
+        return (value, None) if isinstance(value, bool) else (None, "a boolean (true or false)")
+    if kind is int:
+        ok = isinstance(value, int) and not isinstance(value, bool)
+        return (value, None) if ok else (None, "an integer")
+    if kind is float:
+        ok = isinstance(value, int | float) and not isinstance(value, bool)
+        if ok and math.isfinite(value):
+            return float(value), None
+        return None, "a finite number"
+    if kind is str:
+        return (value, None) if isinstance(value, str) else (None, "a string")
+    if typing.get_origin(kind) is tuple:
+        size = len(args)
+        ok = isinstance(value, list | tuple) and len(value) == size
+        ok = ok and all(_typed(item, float)[1] is None for item in value)
+        if ok:
+            return tuple(float(item) for item in value), None
+        return None, f"an array of {size} numbers"
+    return value, None  # a type this module does not know: the dataclass checks it
+
+
+def _make(cls, table: str, values: dict, problems: list[str]):
+    """``cls(**values)``, its validation messages re-labelled with dotted keys."""
+    if table == "solver" and "backend" in values:
+        backend = values["backend"].upper()
+        if backend not in MILP_BACKENDS:
+            problems.append(
+                f"solver.backend must be a MILP backend, one of "
+                f"{', '.join(MILP_BACKENDS)}; got {_show(values['backend'])}"
+            )
+            del values["backend"]
+    try:
+        return cls(**values)
+    except (MissionError, ValueError) as err:
+        problems += _relabel(table, str(err))
+        return None
+
+
+def _relabel(table: str, message: str) -> list[str]:
+    """``"tmax_days must be > 0, got -1"`` -> ``"mission.tmax_days must be > 0, got -1"``.
+
+    A problem that involves several keys names every key it mentions.
+    """
+    keys = _KEYS[table]
+    out = []
+    for problem in message.removeprefix("invalid mission: ").split("; "):
+        first = problem.split(" ", 1)[0]
+        if first in keys and problem.startswith(f"{first} must"):
+            out.append(f"{table}.{problem}")
+        else:
+            named = [f"{table}.{key}" for key in keys if re.search(rf"\b{key}\b", problem)]
+            out.append(f"{', '.join(named) or table}: {problem}")
+    return out
+
+
+def _catalog(values: dict, base: Path, problems: list[str]) -> tuple[Path | None, str]:
+    """Resolved catalog path (None: paper case) and format; problems reported."""
+    fmt = values.get("format")
+    known = True
+    if fmt is not None:
+        fmt = fmt.lower()
+        if fmt not in CATALOG_FORMATS:
+            problems.append(
+                f"catalog.format must be one of {', '.join(CATALOG_FORMATS)}, "
+                f"got {_show(values['format'])}"
+            )
+            fmt, known = "csv", False
+    if "path" not in values:
+        if known and fmt is not None and fmt != "csv":
+            problems.append(
+                f"catalog.format = {fmt!r} needs catalog.path (without a path the "
+                f"catalog is {PAPER_CASE}, a CSV table)"
+            )
+        return None, "csv"
+    path = (base / Path(values["path"]).expanduser()).resolve()
+    if not path.exists():
+        problems.append(f"catalog.path: file not found: {path}")
+    elif path.is_dir():
+        problems.append(f"catalog.path: is a directory, not a catalog file: {path}")
+    if not known:
+        return path, fmt
+    chosen = fmt is None
+    if chosen:
+        fmt = EXTENSION_FORMATS.get(path.suffix.lower())
+        if fmt is None:
+            problems.append(
+                f"catalog.format: cannot tell the format of {path.name} from its "
+                f"extension; set catalog.format to one of "
+                f"{', '.join(CATALOG_FORMATS)}"
+            )
+            return path, "csv"
+    if fmt not in _READERS:
+        problems.append(f"catalog.format: {_unsupported(fmt, path, chosen)}")
+    return path, fmt
+
+
+def _unsupported(fmt: str, path: Path, chosen: bool) -> str:
+    how = f" (chosen from the extension {path.suffix!r} of catalog.path)" if chosen else ""
+    return (
+        f"format {fmt!r} is not supported yet{how}; formats that can be read today: "
+        f"{', '.join(READABLE_FORMATS)}"
+    )
+
+
+# ---------------------------------------------------------------------- helpers
+def _toml_value(value) -> str:
+    """A TOML value; arrays inline."""
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml_value(item) for item in value) + "]"
+    return tomli_w.dumps({"v": value}).removeprefix("v = ").rstrip("\n")
+
+
+def _dotted_name(name: str) -> str | None:
+    """Dotted key of an override name, or None if unknown."""
+    aliases = {"catalog": "catalog.path", "catalog_path": "catalog.path",
+               "format": "catalog.format", "catalog_format": "catalog.format"}  # fmt: skip
+    if name in aliases:
+        return aliases[name]
+    if "." in name:
+        table, _, key = name.partition(".")
+        return name if table in _KEYS and key in _KEYS[table] else None
+    for table in ("mission", "solver"):
+        if name in _KEYS[table]:
+            return f"{table}.{name}"
+    return None
+
+
+def _allowed_overrides() -> str:
+    return (
+        "allowed: catalog_path, catalog_format, a field of Mission or SolverOptions, "
+        "or a dotted key such as mission.n"
+    )
+
+
+def _hint(name: str, allowed) -> str:
+    close = difflib.get_close_matches(name, allowed, n=1)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def _kind(value) -> str:
+    if isinstance(value, bool):
+        return "boolean"
+    for kind, word in ((int, "integer"), (float, "float"), (str, "string"),
+                       (list, "array"), (tuple, "array"), (Mapping, "table")):  # fmt: skip
+        if isinstance(value, kind):
+            return word
+    return type(value).__name__
+
+
+def _show(value) -> str:
+    if isinstance(value, bool):
+        shown = "true" if value else "false"
+    elif isinstance(value, Mapping):
+        return "a table"
+    else:
+        shown = repr(value)
+    return f"{shown} ({_kind(value)})"

@@ -1,0 +1,291 @@
+"""Scenario files: loading, every key, one-line errors with dotted keys, overrides, round trip."""
+
+from pathlib import Path
+
+import pytest
+
+from sdc_cvx import Catalog, Mission, SolverOptions
+from sdc_cvx.catalog import CatalogError
+from sdc_cvx.scenario import (
+    CATALOG_FORMATS,
+    Scenario,
+    ScenarioError,
+    apply_overrides,
+    load,
+)
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+PAPER_CSV = Path(__file__).resolve().parents[1] / "sdc_cvx" / "data" / "paper_table5.csv"
+
+FULL = """
+[catalog]
+path = "debris.csv"
+format = "csv"
+[mission]
+n = 4
+tmax_days = 300
+deorbit_days = 1.5
+operations_dv_mps = 2.0
+min_transfer_days = 3.0
+drift_altitude_km = [450, 1100.0]
+preopt_days = 45.0
+dv_max_mps = 800.0
+drift_inclination = "free"
+j2 = 1.086e-3
+[solver]
+backend = "scipy"
+time_limit_s = 60.0
+mip_gap = 1e-4
+threads = 2
+verbose = true
+seed = 7
+"""
+
+
+def write(folder: Path, text: str, name: str = "scenario.toml") -> Path:
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+def load_error(folder: Path, text: str) -> str:
+    with pytest.raises(ScenarioError) as info:
+        load(write(folder, text))
+    message = str(info.value)
+    assert "\n" not in message and "scenario.toml" in message
+    return message
+
+
+@pytest.fixture
+def debris_csv(tmp_path):
+    (tmp_path / "debris.csv").write_text(PAPER_CSV.read_text())
+    return tmp_path / "debris.csv"
+
+
+# ---------------------------------------------------------------------- loading
+@pytest.mark.parametrize("name", ["paper.toml", "short_mission.toml", "n4.toml", "n6.toml"])
+def test_every_example_loads_and_its_catalog_reads(name):
+    scenario = load(EXAMPLES / name)
+    assert scenario.source == (EXAMPLES / name).resolve()
+    assert len(scenario.load_catalog()) == 11
+    assert load(EXAMPLES / name) == scenario
+
+
+def test_examples_say_what_their_names_say():
+    assert load(EXAMPLES / "paper.toml") == Scenario()
+    short = load(EXAMPLES / "short_mission.toml").mission
+    assert (short.n, short.tmax_days) == (4, 250.0)
+    assert load(EXAMPLES / "n4.toml").mission.n == 4
+    n6 = load(EXAMPLES / "n6.toml")
+    assert n6.mission.n == 6 and n6.catalog_path == PAPER_CSV.resolve()
+
+
+def test_every_documented_key(tmp_path, debris_csv):
+    scenario = load(write(tmp_path, FULL))
+    assert scenario.catalog_path == debris_csv.resolve() and scenario.catalog_format == "csv"
+    assert scenario.mission == Mission(
+        n=4, tmax_days=300.0, deorbit_days=1.5, operations_dv_mps=2.0, min_transfer_days=3.0,
+        drift_altitude_km=(450.0, 1100.0), preopt_days=45.0, dv_max_mps=800.0,
+        drift_inclination="free", j2=1.086e-3,
+    )  # fmt: skip
+    assert scenario.solver == SolverOptions(backend="SCIPY", time_limit_s=60.0, mip_gap=1e-4,
+                                            threads=2, verbose=True, seed=7)  # fmt: skip
+    assert isinstance(scenario.mission.tmax_days, float)  # an integer is fine for a number
+    assert scenario.load_catalog().ids == Catalog.paper_case().ids
+
+
+def test_empty_file_is_the_paper_case(tmp_path):
+    scenario = load(write(tmp_path, ""))
+    assert scenario == Scenario() and scenario.catalog_path is None
+    assert scenario.load_catalog().source == Catalog.paper_case().source
+
+
+def test_catalog_path_is_relative_to_the_scenario_file(tmp_path, debris_csv, monkeypatch):
+    sub = tmp_path / "sub"
+    sub.mkdir()
+    monkeypatch.chdir(sub)  # not where the scenario is
+    scenario = load(write(tmp_path, '[catalog]\npath = "debris.csv"\n'))
+    assert scenario.catalog_path == debris_csv.resolve() and scenario.catalog_format == "csv"
+
+
+# ---------------------------------------------------------------------- errors
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("[mission]\ntmax = 3\n", ["unknown key mission.tmax", "did you mean tmax_days",
+                                   "allowed keys in [mission]: n, tmax_days"]),
+        ("[solver]\nbackend = 'HIGHS'\ngap = 0.1\n", ["unknown key solver.gap", "mip_gap"]),
+        ("[catalog]\nfile = 'x.csv'\n", ["unknown key catalog.file", "path, format"]),
+        ("[mision]\nn = 3\n", ["unknown table [mision]", "catalog, mission, solver"]),
+        ("n = 3\n", ["'n' outside a table", "mission.n"]),
+        ("mission = 3\n", ["mission must be a table"]),
+        ("[mission]\ntmax_days = '365'\n", ["mission.tmax_days must be a finite number",
+                                            "'365' (string)"]),
+        ("[mission]\nn = 4.0\n", ["mission.n must be an integer", "4.0 (float)"]),
+        ("[mission]\nn = true\n", ["mission.n must be an integer", "true (boolean)"]),
+        ("[mission]\ntmax_days = false\n", ["mission.tmax_days must be a finite number"]),
+        ("[mission]\ntmax_days = inf\n", ["mission.tmax_days must be a finite number"]),
+        ("[mission]\ndrift_altitude_km = [400]\n", ["mission.drift_altitude_km must be an "
+                                                    "array of 2 numbers"]),
+        ("[solver]\nthreads = 2.5\n", ["solver.threads must be an integer"]),
+        ("[solver]\nverbose = 1\n", ["solver.verbose must be a boolean"]),
+        ("[catalog]\npath = 5\n", ["catalog.path must be a string"]),
+    ],
+)  # fmt: skip
+def test_unknown_names_and_wrong_types_name_the_dotted_key(tmp_path, text, expected):
+    message = load_error(tmp_path, text)
+    for part in expected:
+        assert part in message
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("[mission]\ntmax_days = -1\n", "mission.tmax_days must be > 0, got -1.0"),
+        ("[mission]\nn = 1\n", "mission.n must be >= 2"),
+        ("[mission]\ndeorbit_days = -0.5\n", "mission.deorbit_days must be >= 0"),
+        ("[mission]\ndrift_altitude_km = [1200, 400]\n",
+         "mission.drift_altitude_km must satisfy 0 < low < high"),
+        ("[mission]\ndrift_inclination = 'best'\n", "mission.drift_inclination must be one of"),
+        ("[solver]\nmip_gap = 1.5\n", "solver.mip_gap must be in [0, 1)"),
+        ("[solver]\ntime_limit_s = 0\n", "solver.time_limit_s must be > 0"),
+        ("[solver]\nthreads = 0\n", "solver.threads must be a positive integer"),
+        ("[solver]\nbackend = 'CLARABEL'\n", "solver.backend must be a MILP backend, one of HIGHS"),
+    ],
+)  # fmt: skip
+def test_out_of_range_values_name_the_dotted_key(tmp_path, text, expected):
+    assert expected in load_error(tmp_path, text)
+
+
+def test_a_problem_of_several_keys_names_them_all(tmp_path):
+    message = load_error(tmp_path, "[mission]\nn = 5\ndeorbit_days = 80\n")
+    assert "mission.n" in message and "mission.deorbit_days" in message
+    assert "mission.tmax_days" in message and "leaves no time" in message
+
+
+def test_every_problem_is_reported_on_one_line(tmp_path):
+    message = load_error(tmp_path, "[mission]\nn = 1\ntmax_days = -1\n[solver]\nmip_gap = 2\n")
+    assert "mission.n" in message and "mission.tmax_days" in message
+    assert "solver.mip_gap" in message
+
+
+def test_missing_catalog_file_names_the_resolved_path(tmp_path):
+    message = load_error(tmp_path, '[catalog]\npath = "data/nowhere.csv"\n')
+    assert "catalog.path" in message and str(tmp_path / "data" / "nowhere.csv") in message
+
+
+def test_catalog_formats(tmp_path):
+    (tmp_path / "debris.tle").write_text("")
+    (tmp_path / "debris.txt").write_text("")
+    (tmp_path / "debris.dat").write_text("")
+    message = load_error(tmp_path, '[catalog]\npath = "debris.tle"\n')
+    assert "format 'tle' is not supported yet" in message and "catalog.format" in message
+    message = load_error(tmp_path, '[catalog]\npath = "debris.txt"\n')
+    assert "format 'tle' is not supported yet" in message and "'.txt'" in message  # says why
+    for fmt in ("omm", "gtoc9"):
+        message = load_error(tmp_path, f'[catalog]\npath = "debris.txt"\nformat = "{fmt}"\n')
+        assert f"format '{fmt}' is not supported yet" in message
+    message = load_error(tmp_path, '[catalog]\npath = "debris.dat"\n')
+    assert "cannot tell the format" in message and ", ".join(CATALOG_FORMATS) in message
+    message = load_error(tmp_path, '[catalog]\npath = "debris.tle"\nformat = "xls"\n')
+    assert "catalog.format must be one of csv, tle, omm, gtoc9" in message
+    message = load_error(tmp_path, '[catalog]\nformat = "tle"\n')
+    assert "catalog.format = 'tle' needs catalog.path" in message
+
+
+def test_csv_format_is_forced_whatever_the_extension(tmp_path, debris_csv):
+    (tmp_path / "debris.dat").write_text(debris_csv.read_text())
+    scenario = load(write(tmp_path, '[catalog]\npath = "debris.dat"\nformat = "CSV"\n'))
+    assert scenario.catalog_format == "csv" and len(scenario.load_catalog()) == 11
+
+
+def test_bad_toml_syntax_gives_the_line(tmp_path):
+    message = load_error(tmp_path, "[mission]\nn = 5\ntmax_days = \n")
+    assert "invalid TOML" in message and "line 3" in message
+
+
+def test_missing_or_unreadable_scenario_file(tmp_path):
+    with pytest.raises(ScenarioError, match="nowhere.toml: file not found"):
+        load(tmp_path / "nowhere.toml")
+    (tmp_path / "binary.toml").write_bytes(b"\xff\xfe[mission]")
+    with pytest.raises(ScenarioError, match="not a UTF-8 text file"):
+        load(tmp_path / "binary.toml")
+
+
+def test_bad_catalog_content_is_a_catalog_error(tmp_path):
+    (tmp_path / "bad.csv").write_text("id,a_km,e,inc_deg,raan_deg\n1,7000,2.5,98,10\n")
+    scenario = load(write(tmp_path, '[catalog]\npath = "bad.csv"\n'))
+    with pytest.raises(CatalogError, match="row 1"):
+        scenario.load_catalog()
+
+
+# ---------------------------------------------------------------------- overrides
+def test_overrides_by_field_name_and_dotted_key():
+    dotted = {"solver.time_limit_s": 10, "mission.preopt_days": 40}
+    scenario = Scenario().with_overrides(n=4, tmax_days=300, backend="scipy", **dotted)
+    mission = scenario.mission
+    assert (mission.n, mission.tmax_days, mission.preopt_days) == (4, 300.0, 40.0)
+    assert scenario.solver.backend == "SCIPY" and scenario.solver.time_limit_s == 10.0
+    assert scenario.mission.deorbit_days == 0.0  # untouched
+
+
+def test_none_means_not_given(tmp_path):
+    scenario = load(EXAMPLES / "short_mission.toml")
+    assert scenario.with_overrides(n=None, backend=None, catalog_path=None) == scenario
+
+
+def test_overrides_are_validated_like_a_file():
+    with pytest.raises(ScenarioError, match=r"^overrides: mission\.n must be >= 2"):
+        Scenario().with_overrides(n=1)
+    with pytest.raises(ScenarioError, match=r"mission\.n must be an integer, got true \(boolean\)"):
+        Scenario().with_overrides(n=True)
+    with pytest.raises(ScenarioError, match="unknown override 'tmax'"):
+        Scenario().with_overrides(tmax=3)
+    with pytest.raises(ScenarioError, match=r"^command line: solver\.mip_gap"):
+        apply_overrides(Scenario(), {"mip_gap": 3.0}, origin="command line")
+
+
+def test_catalog_override_is_relative_to_the_current_directory(tmp_path, debris_csv, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    scenario = load(EXAMPLES / "n4.toml").with_overrides(catalog_path="debris.csv")
+    assert scenario.catalog_path == debris_csv.resolve() and scenario.mission.n == 4
+    with pytest.raises(ScenarioError, match="catalog.path: file not found"):
+        scenario.with_overrides(catalog="other.csv")
+    (tmp_path / "debris.tle").write_text("")
+    with pytest.raises(ScenarioError, match="format 'tle' is not supported yet"):
+        scenario.with_overrides(catalog="debris.tle")  # format chosen again from the extension
+
+
+# ---------------------------------------------------------------------- writing
+@pytest.mark.parametrize("name", ["paper.toml", "short_mission.toml", "n4.toml", "n6.toml"])
+def test_to_toml_round_trips(tmp_path, name):
+    scenario = load(EXAMPLES / name)
+    again = load(write(tmp_path, scenario.to_toml()))
+    assert again == scenario
+
+
+def test_to_toml_fills_every_default_and_round_trips(tmp_path, debris_csv):
+    scenario = load(write(tmp_path, FULL, "full.toml")).with_overrides(seed=3)
+    text = scenario.to_toml()
+    for key in ("n", "tmax_days", "deorbit_days", "operations_dv_mps", "min_transfer_days",
+                "drift_altitude_km", "preopt_days", "dv_max_mps", "drift_inclination", "j2",
+                "backend", "time_limit_s", "mip_gap", "threads", "verbose", "seed"):  # fmt: skip
+        assert f"\n{key} = " in text
+    assert f'path = "{debris_csv.resolve()}"' in text  # absolute
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    assert load(write(elsewhere, text)) == scenario
+
+
+def test_to_toml_of_the_defaults(tmp_path):
+    text = Scenario().to_toml()
+    assert "\npath" not in text and "Table 5" in text and "n = 5" in text
+    assert "time_limit_s" in text.split("# not set")[1]  # said, not written
+    assert load(write(tmp_path, text)) == Scenario()
+
+
+def test_to_dict():
+    data = Scenario().with_overrides(time_limit_s=5).to_dict()
+    assert data["catalog"] == {"path": None, "format": "csv"}
+    assert data["mission"]["drift_altitude_km"] == [400.0, 1200.0]
+    assert data["solver"]["time_limit_s"] == 5.0 and data["solver"]["seed"] is None
