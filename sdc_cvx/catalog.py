@@ -260,6 +260,22 @@ class Catalog:
         start = "None" if self.start is None else self.start.isoformat()
         return f"Catalog({len(self)} debris from {self.source!r}, start={start})"
 
+    def with_orbit(self, orbit_id: str, a_km, e, inc_deg, raan_deg) -> Catalog:
+        """A copy with one more orbit, e.g. the launcher's injection orbit (Part II-C).
+
+        The new row's RAAN is at the catalog's start date; the other rows are kept as
+        they are (no second propagation of their epochs).
+        """
+        if str(orbit_id) in self.ids:
+            raise CatalogError(f"{self.source}: id {orbit_id!r} is already in the catalog")
+        row = Catalog.from_frame(
+            pd.DataFrame({"id": [str(orbit_id)], "a_km": [a_km], "e": [e], "inc_deg": [inc_deg],
+                          "raan_deg": [raan_deg]}),
+            source=f"orbit {orbit_id!r}",
+        ).frame  # fmt: skip
+        frame = pd.concat([self.frame, row], ignore_index=True)
+        return Catalog(frame, self.start, self.source)
+
     def subset(self, ids: Iterable[str] | str) -> Catalog:
         """Catalog restricted to ``ids``, kept in catalog order (not in the given order).
 

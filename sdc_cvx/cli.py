@@ -208,7 +208,7 @@ def run(scenario_file, catalog_path, catalog_format, n, tmax_days, deorbit_days,
     catalog = read_catalog(scenario)
     mission, solver = scenario.mission, scenario.solver
     try:
-        mission.check_candidates(len(catalog))
+        mission.check_candidates(catalog.ids)
     except MissionError as err:
         fail(f"mission.n: {err} of {catalog.source}")
     check_backend(solver)

@@ -10,7 +10,7 @@ import dataclasses
 import numbers
 from dataclasses import dataclass
 
-from .orbits import J2
+from .orbits import J2, R_EARTH
 
 DRIFT_INCLINATION_RULES = ("table3", "free")
 
@@ -46,6 +46,23 @@ class Mission:
         ``"free"``: whichever of the two debris inclinations is cheaper.
     j2 : float
         Zonal coefficient used by all the transfer physics (DESIGN §3).
+    deorbit_by : {"kit", "vehicle"}
+        Debris operations scenario (Part I-B): ``"kit"``, a deorbit kit is attached and
+        the vehicle goes on from the debris orbit (cost ``operations_dv_mps``);
+        ``"vehicle"``, the vehicle lowers the debris' perigee to
+        ``deorbit_perigee_km``, releases it and raises its own perigee back, which adds
+        those two burns to each debris' cost (the paper's "about 200 m/s per debris"
+        is the first of them).
+    deorbit_perigee_km : float
+        Target perigee altitude of a deorbited debris [km] (``deorbit_by="vehicle"``).
+    must_include, exclude : tuple of str
+        Debris ids that must be visited / must not be.
+    first : str, optional
+        Debris id fixed as the first of the path.
+    injection : (a_km, e, inc_deg, raan_deg), optional
+        Orbit the launcher leaves the vehicle on at t0 (Part II-C): a fictitious debris
+        fixed at the head of the path, so the first transfer's cost and duration count.
+        It is not one of the ``n`` debris and has no operations.
     """
 
     n: int = 5
@@ -58,9 +75,21 @@ class Mission:
     dv_max_mps: float = 1000.0
     drift_inclination: str = "table3"
     j2: float = J2
+    deorbit_by: str = "kit"
+    deorbit_perigee_km: float = 50.0
+    must_include: tuple[str, ...] = ()
+    exclude: tuple[str, ...] = ()
+    first: str | None = None
+    injection: tuple[float, float, float, float] | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "drift_altitude_km", tuple(self.drift_altitude_km))
+        for name in ("must_include", "exclude"):
+            object.__setattr__(self, name, tuple(str(k) for k in getattr(self, name)))
+        if self.first is not None:
+            object.__setattr__(self, "first", str(self.first))
+        if self.injection is not None:
+            object.__setattr__(self, "injection", tuple(self.injection))
         problems = list(self._problems())
         if problems:
             raise MissionError("invalid mission: " + "; ".join(problems))
@@ -83,6 +112,7 @@ class Mission:
                 yield f"{name} must be >= 0, got {getattr(self, name)!r}"
         if wrong_type:
             return
+        yield from self._option_problems()
         bounds = self.drift_altitude_km
         if len(bounds) != 2:
             yield f"drift_altitude_km must be (low, high), got {bounds!r}"
@@ -102,10 +132,62 @@ class Mission:
                     f"time for transfers within tmax_days = {self.tmax_days:g}"
                 )
 
-    def check_candidates(self, n_candidates: int) -> None:
-        """Raise :class:`MissionError` if the catalog has fewer than ``n`` debris."""
-        if self.n > n_candidates:
-            raise MissionError(f"n = {self.n} exceeds the {n_candidates} candidate debris")
+    def check_candidates(self, ids) -> None:
+        """Raise :class:`MissionError` if the mission does not fit the catalog's debris ``ids``.
+
+        Checks that every id named by ``must_include``, ``exclude`` and ``first``
+        exists, and that ``n`` debris remain once the excluded ones are removed.
+        ``ids`` may also be a count (then only ``n`` is checked).
+        """
+        if isinstance(ids, numbers.Integral):
+            ids = [f"#{k}" for k in range(ids)]
+            if self.must_include or self.exclude or self.first:
+                raise TypeError("check_candidates needs the catalog ids to check debris names")
+        ids = [str(k) for k in ids]
+        known = set(ids)
+        problems = []
+        for name in ("must_include", "exclude"):
+            unknown = [k for k in getattr(self, name) if k not in known]
+            if unknown:
+                problems.append(f"{name} names debris not in the catalog: {', '.join(unknown)}")
+        if self.first is not None and self.first not in known:
+            problems.append(f"first = {self.first!r} is not in the catalog")
+        available = len(known - set(self.exclude))
+        if self.n > available:
+            excluded = f" ({len(ids) - available} excluded)" if self.exclude else ""
+            problems.append(f"n = {self.n} exceeds the {available} candidate debris{excluded}")
+        if problems:
+            raise MissionError("; ".join(problems))
+
+    def _option_problems(self):
+        if self.deorbit_by not in ("kit", "vehicle"):
+            yield f"deorbit_by must be 'kit' or 'vehicle', got {self.deorbit_by!r}"
+        if not (_is_real(self.deorbit_perigee_km) and self.deorbit_perigee_km >= 0):
+            yield f"deorbit_perigee_km must be a number >= 0, got {self.deorbit_perigee_km!r}"
+        both = sorted(set(self.must_include) & set(self.exclude))
+        if both:
+            yield f"debris both in must_include and exclude: {', '.join(both)}"
+        required = set(self.must_include) | ({self.first} if self.first else set())
+        if isinstance(self.n, numbers.Integral) and len(required) > self.n:
+            yield (
+                f"must_include and first name {len(required)} debris but n = {self.n}: "
+                "raise n or drop some"
+            )
+        if self.first is not None and self.first in self.exclude:
+            yield f"first = {self.first!r} is also excluded"
+        if self.injection is not None:
+            if self.first is not None:
+                yield "first and injection cannot both be set: the injection orbit is the start"
+            if len(self.injection) != 4 or not all(_is_real(v) for v in self.injection):
+                yield f"injection must be (a_km, e, inc_deg, raan_deg), got {self.injection!r}"
+            else:
+                a_km, e, inc, _ = self.injection
+                if not a_km > R_EARTH / 1e3:
+                    yield f"injection a_km must exceed the Earth's radius, got {a_km!r}"
+                if not 0 <= e < 1:
+                    yield f"injection e must be in [0, 1), got {e!r}"
+                if not 0 <= inc <= 180:
+                    yield f"injection inc_deg must be in [0, 180], got {inc!r}"
 
     def replace(self, **changes) -> Mission:
         """A copy with some fields changed (validated again)."""
@@ -115,6 +197,10 @@ class Mission:
         """Plain dict of the parameters (lists for tuples), e.g. for JSON output."""
         out = dataclasses.asdict(self)
         out["drift_altitude_km"] = list(self.drift_altitude_km)
+        for name in ("must_include", "exclude"):
+            out[name] = list(out[name])
+        if self.injection is not None:
+            out["injection"] = list(self.injection)
         return out
 
 

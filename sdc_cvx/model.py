@@ -65,10 +65,18 @@ class PathModel:
         Debris positions of the m kept edges.
     n : int
         Number of debris to visit.
-    tmax_days, deorbit_days, min_transfer_days : float
-        T_max, T_deorb, T_min [days].
-    operations_dv_mps : float
-        C_k, cost of the operations at each debris [m/s] (a constant: n debris are visited).
+    tmax_days, min_transfer_days : float
+        T_max, T_min [days].
+    deorbit_days : float or array_like
+        T_deorb, operations time at each debris [days]: one value, or one per debris
+        (an injection orbit has none).
+    operations_dv_mps : float or array_like
+        C_k, cost of the operations at each debris [m/s]: one value or one per debris.
+    first : int, optional
+        Debris fixed at the head of the path (x = 0, y = 1): the first debris asked
+        for, or the injection orbit (Part II-C).
+    must_visit : sequence of int
+        Debris that must be on the path (s_k = x_k + y_k - z_k = 1).
     duration_model : {"secant", "two_segments"}
         One secant per edge (Eq. 17-18), or the paper's two half-segments through the
         reference (Fig. 14): ``alpha = p_up - p_down`` with a binary ``sigma`` for the
@@ -78,7 +86,7 @@ class PathModel:
 
     def __init__(self, n_debris, edges_from, edges_to, *, n, tmax_days, deorbit_days=0.0,
                  min_transfer_days=0.0, operations_dv_mps=0.0,
-                 duration_model="secant"):  # fmt: skip
+                 duration_model="secant", first=None, must_visit=()):  # fmt: skip
         self.n_debris = n_debris
         self.edges_from = np.asarray(edges_from, dtype=int)
         self.edges_to = np.asarray(edges_to, dtype=int)
@@ -86,7 +94,9 @@ class PathModel:
         m = len(self.edges_from)
         self.m = m
         big_t = float(tmax_days)
-        t_deorb = float(deorbit_days)
+        t_deorb = np.broadcast_to(np.asarray(deorbit_days, dtype=float), (n_debris,))
+        ops_cost = np.broadcast_to(np.asarray(operations_dv_mps, dtype=float), (n_debris,))
+        t_deorb_from = t_deorb[self.edges_from]  # operations before each edge's departure
         n_float = float(n)
 
         # parameters: re-valued every iteration
@@ -144,6 +154,7 @@ class PathModel:
         duration = times(self.t0_shifted, s) + slopes + times(self.t2, d)
         self.duration = duration
         start = y - z  # 1 only at the first debris (Eq. 16's counting argument)
+        visited = x + y - z  # s_k of Eq. 16: 1 for the n debris on the path
         constraints = {
             "count": [cp.sum(s) == n - 1, cp.sum(z) == n - 2],
             "degree": [x == into @ s, y == out_of @ s],
@@ -153,22 +164,24 @@ class PathModel:
             "product_d": [
                 d >= times(self.depart_lo, s),
                 d <= times(self.depart_hi, s),
-                d <= t_from + t_deorb * s,
-                d >= t_from + t_deorb - big_t * (1 - s),
+                d <= t_from + cp.multiply(t_deorb_from, s),
+                d >= t_from + t_deorb_from - big_t * (1 - s),
             ],
             "chronology": [
                 t_to >= d + duration,
                 t_to <= d + duration + big_t * (1 - s),  # leave as soon as possible (III-H)
                 t_to >= d + float(min_transfer_days) * s,
             ],
-            "duration": [cp.sum(duration) + n * t_deorb <= big_t],
+            "duration": [cp.sum(duration) + t_deorb @ visited <= big_t],
             "dates": [t >= 0, t <= big_t - t_deorb, t <= big_t * (1 - start)],
+            "required": [start[k] == 1 for k in ([first] if first is not None else [])]
+            + [visited[k] == 1 for k in must_visit],
             "ordering": [u >= 0, u <= n_float - 1, u_to >= u_from + 1 - n_float * (1 - s)],
             "cost": [w >= times(self.c0[k], s) + times(self.c1[k], p) for k in range(2)],
             "alpha_sign": split_rows,
         }
         self.constraint_groups = constraints
-        objective = cp.Minimize(cp.sum(w) + n * float(operations_dv_mps))
+        objective = cp.Minimize(cp.sum(w) + ops_cost @ visited)
         self.problem = cp.Problem(objective, [c for group in constraints.values() for c in group])
 
     def update(self, coefficients: Coefficients) -> None:

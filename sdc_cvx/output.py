@@ -82,6 +82,7 @@ def write_run(
     for name, text in files.items():
         write_atomic(folder / name, text)
         written.append(folder / name)
+    catalog = solution.catalog if solution.catalog is not None else catalog
     if catalog is not None and formats:
         written += save_figures(solution, catalog, folder, formats=tuple(formats))
     write_atomic(folder / "solution.json", solution.to_json())  # last: the run is complete

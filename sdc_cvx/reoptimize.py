@@ -76,10 +76,11 @@ def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, mi
     """
     legs = len(path) - 1
     a_out, inc_out, side_out = np.full(legs, np.nan), np.zeros(legs), np.zeros(legs)
-    ready = deorbit_days
+    ops = np.broadcast_to(np.asarray(deorbit_days, dtype=float), np.shape(orbits.a))
+    ready = float(ops[path[0]])
     for k in range(legs):
         origin, target = orbits.take([path[k]]), orbits.take([path[k + 1]])
-        remaining = tmax_days - deorbit_days - ready
+        remaining = tmax_days - float(ops[path[k + 1]]) - ready
         if remaining <= 0:
             break
         sides = np.array([1.0, -1.0] if inclination == "table3" else [1.0, 1.0, -1.0, -1.0])
@@ -107,7 +108,7 @@ def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, mi
             break
         a_out[k], inc_out[k], side_out[k] = a_best[pick], incs[pick], sides[pick]
         seconds = transfer_duration(origin, target, a_out[k], inc_out[k], t_depart, j2=j2)[0]
-        ready += seconds / SECONDS_PER_DAY + deorbit_days
+        ready += seconds / SECONDS_PER_DAY + float(ops[path[k + 1]])
     return a_out, inc_out, side_out
 
 
@@ -123,7 +124,9 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
     side, inc_drift, a_start : array_like
         Side (+1/-1), drift inclination [rad] and radius [m] of each leg in the last
         linearised solution (the starting point, kept if nothing better is found).
-    tmax_days, deorbit_days : float
+    tmax_days : float
+    deorbit_days : float or array_like
+        T_deorb [days], one value or one per debris.
     a_low, a_high : float
         Drift radius bounds [m].
     inclination : {"table3", "free"}

@@ -251,7 +251,8 @@ class Scenario:
             lines += [f"{key} = {_toml_value(value)}" for key, value in values.items()
                       if value is not None]  # fmt: skip
             if unset:
-                lines.append(f"# not set (no limit / backend default): {', '.join(unset)}")
+                meaning = "no limit / backend default" if table == "solver" else "none"
+                lines.append(f"# not set ({meaning}): {', '.join(unset)}")
         return "\n".join(lines) + "\n"
 
     def _where(self) -> str:
@@ -366,6 +367,10 @@ def _typed(value, kind):
     if kind is str:
         return (value, None) if isinstance(value, str) else (None, "a string")
     if typing.get_origin(kind) is tuple:
+        args = typing.get_args(kind)  # of the tuple itself (X | None was unwrapped above)
+        if len(args) == 2 and args[1] is Ellipsis:  # tuple[str, ...]: any number of ids
+            ok = isinstance(value, list | tuple) and all(isinstance(v, str) for v in value)
+            return (tuple(value), None) if ok else (None, "an array of strings")
         size = len(args)
         ok = isinstance(value, list | tuple) and len(value) == size
         ok = ok and all(_typed(item, float)[1] is None for item in value)

@@ -31,11 +31,12 @@ from .edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_wi
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .mission import Mission
 from .model import ModelSize, PathModel
-from .orbits import R_EARTH, SECONDS_PER_DAY
+from .orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
 from .reoptimize import reoptimize
 from .solution import IterationRecord, Leg, PlanEvaluation, Solution, evaluate_plan
 from .transfer import cheapest_transfer
 
+INJECTION_ID = "injection"
 FROZEN_GAP_DEG = 0.1
 MAX_WINDOW_COPIES = 120
 
@@ -109,7 +110,59 @@ def edge_geometry(edges: pd.DataFrame, catalog: Catalog, mission: Mission) -> Ed
     )
 
 
-def default_date_windows(catalog: Catalog, mission: Mission, kept_edges: int) -> int:
+@dataclass(frozen=True)
+class MissionNodes:
+    """What the mission options (issue 8) make of the catalog's debris, per node.
+
+    Attributes
+    ----------
+    catalog : Catalog
+        The candidates, plus the injection orbit as a last row when there is one.
+    legs : int
+        Transfers on the path: n - 1, or n with an injection orbit.
+    deorbit_days, cost_mps : ndarray
+        Operations time T_deorb [days] and cost C_k [m/s] at each node (0 at the
+        injection orbit).
+    first : int or None
+        Node fixed at the head of the path (the injection orbit or ``mission.first``).
+    must_visit, excluded : tuple of int
+        Nodes that must be / must not be on the path.
+    """
+
+    catalog: Catalog
+    legs: int
+    deorbit_days: np.ndarray
+    cost_mps: np.ndarray
+    first: int | None
+    must_visit: tuple[int, ...]
+    excluded: tuple[int, ...]
+
+    @classmethod
+    def of(cls, catalog: Catalog, mission: Mission) -> MissionNodes:
+        """The nodes of ``mission`` over ``catalog`` (ids checked by ``check_candidates``)."""
+        index = {k: n for n, k in enumerate(catalog.ids)}
+        first = index[mission.first] if mission.first is not None else None
+        if mission.injection is not None:
+            catalog = catalog.with_orbit(INJECTION_ID, *mission.injection)
+            first = len(catalog) - 1
+        debris = np.arange(len(catalog)) != (first if mission.injection is not None else -1)
+        cost = np.full(len(catalog), float(mission.operations_dv_mps))
+        if mission.deorbit_by == "vehicle":
+            # lower the debris' perigee, release it, raise the vehicle's perigee back
+            lower = perigee_lowering_dv(catalog.a_m, R_EARTH + 1e3 * mission.deorbit_perigee_km)
+            cost += 2.0 * lower
+        return cls(
+            catalog=catalog,
+            legs=mission.n - 1 + (mission.injection is not None),
+            deorbit_days=np.where(debris, float(mission.deorbit_days), 0.0),
+            cost_mps=np.where(debris, cost, 0.0),
+            first=first,
+            must_visit=tuple(index[k] for k in mission.must_include),
+            excluded=tuple(index[k] for k in mission.exclude),
+        )
+
+
+def default_date_windows(catalog: Catalog, mission: Mission, kept_edges: int, legs: int) -> int:
     """One departure-date window per leg on small date-sensitive cases, else one.
 
     - If no RAAN gap moves by more than ``FROZEN_GAP_DEG`` over the mission (the
@@ -122,7 +175,7 @@ def default_date_windows(catalog: Catalog, mission: Mission, kept_edges: int) ->
     """
     rates = node_orbits(catalog, mission).rate * SECONDS_PER_DAY  # rad/day
     spread_deg = np.rad2deg(rates.max() - rates.min()) * mission.tmax_days
-    windows = mission.n - 1
+    windows = legs
     if spread_deg < FROZEN_GAP_DEG or kept_edges * windows > MAX_WINDOW_COPIES:
         return 1
     return windows
@@ -149,20 +202,27 @@ def read_path(model: PathModel, n: int) -> tuple[list[int], list[int]]:
 class _Driver:
     """State of one sequential solve (kept private: :func:`solve` is the API)."""
 
-    def __init__(self, catalog, mission, solver, settings, progress):
+    def __init__(self, nodes: MissionNodes, mission, solver, settings, progress):
+        catalog = nodes.catalog
+        self.nodes = nodes
         self.catalog, self.mission, self.solver, self.settings = catalog, mission, solver, settings
         self.progress = progress or (lambda record: None)
         self.timings = {}
-        self.depart_range = (mission.deorbit_days, mission.tmax_days - mission.deorbit_days)
+        first_ops = (
+            nodes.deorbit_days.min() if nodes.first is None else nodes.deorbit_days[nodes.first]
+        )
+        self.depart_range = (float(first_ops), mission.tmax_days - nodes.deorbit_days.min())
         start = time.perf_counter()
         # the first transfer leaves after the operations at the first debris
-        self.table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+        self.table = preoptimize(catalog, mission, departure_day=self.depart_range[0])
         # Reference transfers take 2/3 of a leg's fair share of the mission (the paper's
         # T0 = 2 months for 4 legs in a year, Part IV-B), or T0 if shorter: references
         # that each use the whole mission would make the first MILP infeasible.
-        share = (mission.tmax_days - mission.n * mission.deorbit_days) / (mission.n - 1)
+        share = (
+            mission.tmax_days - nodes.deorbit_days.sum() / len(catalog) * mission.n
+        ) / nodes.legs
         windows = settings.date_windows or default_date_windows(
-            catalog, mission, self.table.counts()["kept"]
+            catalog, mission, self.table.counts()["kept"], nodes.legs
         )
         bounds = np.linspace(*self.depart_range, windows + 1)
         self.kept = preoptimize_windows(
@@ -170,16 +230,20 @@ class _Driver:
             reference_at=(0.0,) if windows == 1 else (0.0, 0.5),
         )  # fmt: skip
         self.timings["preoptimize_s"] = time.perf_counter() - start
-        if self.kept[["i", "j"]].drop_duplicates().shape[0] < mission.n - 1:
+        # excluded debris lose their edges; nothing returns to the injection orbit
+        barred = np.array(nodes.excluded + ((nodes.first,) if mission.injection else ()), int)
+        touches = self.kept["i"].isin(nodes.excluded) | self.kept["j"].isin(barred)
+        self.kept = self.kept[~touches].reset_index(drop=True)
+        if self.kept[["i", "j"]].drop_duplicates().shape[0] < nodes.legs:
             raise MissionInfeasible(_relax_message(mission, self.table.summary()))
         self.orbits = node_orbits(catalog, mission)
         self.geometry = edge_geometry(self.kept, catalog, mission)
         start = time.perf_counter()
         self.model = PathModel(
-            len(catalog), self.kept["i"].to_numpy(), self.kept["j"].to_numpy(), n=mission.n,
-            tmax_days=mission.tmax_days, deorbit_days=mission.deorbit_days,
-            min_transfer_days=mission.min_transfer_days,
-            operations_dv_mps=mission.operations_dv_mps,
+            len(catalog), self.kept["i"].to_numpy(), self.kept["j"].to_numpy(),
+            n=nodes.legs + 1, tmax_days=mission.tmax_days, deorbit_days=nodes.deorbit_days,
+            min_transfer_days=mission.min_transfer_days, operations_dv_mps=nodes.cost_mps,
+            first=nodes.first, must_visit=nodes.must_visit,
             duration_model=settings.duration_model,
         )  # fmt: skip
         self.timings["build_s"] = time.perf_counter() - start
@@ -212,7 +276,7 @@ class _Driver:
             self.timings["first_solve_overhead_s"] = report.overhead_seconds
         if not report.status.has_solution:
             return self._no_solution(report, start)
-        path, legs = read_path(self.model, self.mission.n)
+        path, legs = read_path(self.model, self.nodes.legs + 1)
         alpha_km = np.asarray(self.model.p.value)[legs]
         a_legs = coefficients.a_ref[legs] + alpha_km * 1e3
         evaluation = self.evaluate(path, legs, a_legs)
@@ -231,7 +295,7 @@ class _Driver:
     def evaluate(self, path, legs, a_legs) -> PlanEvaluation:
         return evaluate_plan(
             self.orbits, path, a_legs, self.geometry.inc_drift[legs],
-            deorbit_days=self.mission.deorbit_days, j2=self.mission.j2,
+            deorbit_days=self.nodes.deorbit_days, j2=self.mission.j2,
         )  # fmt: skip
 
     def record(self, report: SolveReport, path, legs, evaluation, start, note):
@@ -240,7 +304,9 @@ class _Driver:
             iteration=len(self.history),
             path=tuple(ids[k] for k in path) if path else (),
             dv_linearized_mps=report.objective,
-            dv_true_mps=float(evaluation.dv_mps.sum()) + self._operations() if path else None,
+            dv_true_mps=float(evaluation.dv_mps.sum() + self.nodes.cost_mps[path].sum())
+            if path
+            else None,
             duration_true_days=evaluation.end_day if path else None,
             nodes=report.nodes,
             seconds=time.perf_counter() - start,
@@ -252,9 +318,6 @@ class _Driver:
         )
         self.history.append(record)
         self.progress(record)
-
-    def _operations(self):
-        return self.mission.n * self.mission.operations_dv_mps
 
     def _no_solution(self, report: SolveReport, start):
         if report.status in (Status.ERROR, Status.NO_SOLUTION, Status.UNBOUNDED):
@@ -372,7 +435,7 @@ class _Driver:
         geometry = self.geometry
         final = reoptimize(
             self.orbits, path, geometry.side[legs], geometry.inc_drift[legs], a_legs,
-            tmax_days=self.mission.tmax_days, deorbit_days=self.mission.deorbit_days,
+            tmax_days=self.mission.tmax_days, deorbit_days=self.nodes.deorbit_days,
             a_low=geometry.a_low, a_high=geometry.a_high, j2=self.mission.j2,
             inclination=self.mission.drift_inclination,
             min_days=self.mission.min_transfer_days,
@@ -469,9 +532,11 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     mission = Mission() if mission is None else mission
     solver = SolverOptions() if solver is None else solver
     settings = SequentialSettings() if settings is None else settings
-    mission.check_candidates(len(catalog))
+    mission.check_candidates(catalog.ids)
     wall = time.perf_counter()
-    driver = _Driver(catalog, mission, solver, settings, progress)
+    nodes = MissionNodes.of(catalog, mission)
+    catalog = nodes.catalog
+    driver = _Driver(nodes, mission, solver, settings, progress)
     path, legs, final, status = driver.run()
     driver.timings["iterations_s"] = sum(r.seconds for r in driver.history)
     driver.timings["total_s"] = time.perf_counter() - wall
@@ -483,7 +548,18 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         path=tuple(ids[k] for k in path),
         legs=legs_out,
         initial_legs=driver.initial_legs,
-        total_dv_mps=float(plan.dv_mps.sum()) + mission.n * mission.operations_dv_mps,
+        catalog=catalog,
+        total_dv_mps=float(plan.dv_mps.sum() + nodes.cost_mps[path].sum()),
+        operations={
+            "scenario": mission.deorbit_by,
+            "start": INJECTION_ID if mission.injection is not None else "first debris",
+            "per_debris_mps": {
+                ids[k]: float(nodes.cost_mps[k])
+                for k in path
+                if k != nodes.first or mission.injection is None
+            },
+            "total_mps": float(nodes.cost_mps[path].sum()),
+        },  # fmt: skip
         total_duration_days=plan.end_day,
         status=status,
         backend=solver.backend,
@@ -523,11 +599,24 @@ def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation) -> tupl
 
 
 def _relax_message(mission: Mission, edges_summary: str) -> str:
+    requests = [
+        f"{name} = {', '.join(value) if isinstance(value, tuple) else value}"
+        for name, value in (
+            ("must_include", mission.must_include),
+            ("exclude", mission.exclude),
+            ("first", mission.first),
+            ("min_transfer_days", mission.min_transfer_days or None),
+        )  # fmt: skip
+        if value
+    ]
+    if mission.injection is not None:
+        requests.append(f"injection = {list(mission.injection)}")
+    asked = f" with {'; '.join(requests)}" if requests else ""
     return (
-        f"no path of n = {mission.n} debris ends within T_max = {mission.tmax_days:g} days in "
-        f"the linearised model over the kept edges ({edges_summary}). Relax one of: "
-        f"a longer mission (tmax_days), "
-        f"a longer pre-optimisation bound (preopt_days = {mission.preopt_days:g}), a higher "
+        f"no path of n = {mission.n} debris ends within T_max = {mission.tmax_days:g} days"
+        f"{asked} in the linearised model over the kept edges ({edges_summary}). Relax one "
+        f"of: {'those requests, ' if requests else ''}a longer mission (tmax_days), a longer "
+        f"pre-optimisation bound (preopt_days = {mission.preopt_days:g}), a higher "
         f"dv_max_mps ({mission.dv_max_mps:g}), a wider drift altitude band "
         f"{mission.drift_altitude_km}, fewer debris (n), or shorter operations (deorbit_days)"
     )

@@ -16,6 +16,7 @@ from typing import NamedTuple
 import numpy as np
 import pandas as pd
 
+from .catalog import Catalog
 from .mission import Mission
 from .orbits import SECONDS_PER_DAY
 from .transfer import NodeOrbits, transfer_duration, transfer_dv
@@ -57,8 +58,9 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
         Debris positions in visiting order (length n).
     a_drift, inc_drift : array_like
         Drift radius [m] and inclination [rad] of each leg (length n - 1).
-    deorbit_days : float
-        T_deorb [days].
+    deorbit_days : float or array_like
+        T_deorb [days]: one value, or one per debris of ``orbits`` (0 for an
+        injection orbit).
     j2 : float
 
     Returns
@@ -70,7 +72,8 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
     a_drift = np.broadcast_to(np.asarray(a_drift, dtype=float), (legs,))
     inc_drift = np.broadcast_to(np.asarray(inc_drift, dtype=float), (legs,))
     departure, duration, arrival = np.empty(legs), np.empty(legs), np.empty(legs)
-    ready = deorbit_days  # operations at the first debris, reached at t = 0
+    ops = np.broadcast_to(np.asarray(deorbit_days, dtype=float), np.shape(orbits.a))
+    ready = float(ops[path[0]])  # operations at the first debris, reached at t = 0
     for k in range(legs):
         origin, target = orbits.take([path[k]]), orbits.take([path[k + 1]])
         departure[k] = ready
@@ -79,7 +82,7 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
         )
         duration[k] = seconds[0] / SECONDS_PER_DAY
         arrival[k] = departure[k] + duration[k]
-        ready = arrival[k] + deorbit_days
+        ready = arrival[k] + float(ops[path[k + 1]])
     origins, targets = orbits.take(path[:-1]), orbits.take(path[1:])
     dv = transfer_dv(origins.a, origins.inc, targets.a, targets.inc, a_drift, inc_drift)
     return PlanEvaluation(departure, duration, arrival, dv, float(ready))
@@ -133,7 +136,8 @@ class Solution:
     """The planned mission: path, legs, totals, and how it was found.
 
     ``legs`` come from the nonlinear re-optimisation and are re-evaluated with the
-    physics module; ``initial_legs`` is the first iteration's plan (the paper's
+    physics module; ``catalog`` is the catalog solved over (with the injection
+    orbit when there is one); ``initial_legs`` is the first iteration's plan (the paper's
     "before optimisation" of Fig. 19); ``iterations`` is the history of the
     sequential linearisation.
     """
@@ -147,6 +151,8 @@ class Solution:
     mission: Mission
     iterations: tuple[IterationRecord, ...]
     initial_legs: tuple[Leg, ...] = ()
+    operations: dict = field(default_factory=dict)
+    catalog: Catalog | None = field(default=None, repr=False, compare=False)
     model_size: dict = field(default_factory=dict)
     timings: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
@@ -173,6 +179,7 @@ class Solution:
             "initial_legs": [leg.to_dict() for leg in self.initial_legs],
             "iterations": [record.to_dict() for record in self.iterations],
             "mission": self.mission.to_dict(),
+            "operations": self.operations,
             "model_size": self.model_size,
             "timings": self.timings,
             "notes": list(self.notes),

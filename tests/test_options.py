@@ -1,0 +1,139 @@
+"""Mission options (issue 8): operations, deorbit cost, injection orbit, must/excluded debris."""
+
+import numpy as np
+import pytest
+
+from sdc_cvx import Catalog, Mission, MissionError, MissionInfeasible, solve
+from sdc_cvx.orbits import R_EARTH, SECONDS_PER_DAY
+from sdc_cvx.transfer import NodeOrbits, transfer_duration, transfer_dv
+
+MU = 3.986e14
+PAPER = Catalog.paper_case()
+DEBRIS_5 = (7128.5, 0.0, 98.4, 174.7)  # Table 5
+
+
+@pytest.fixture(scope="module")
+def base():
+    return solve()
+
+
+def legs_follow_the_physics(sol, catalog, deorbit_days):
+    """Every leg re-evaluated independently; dates chain with the operations time."""
+    orbits = NodeOrbits.from_elements(catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad)
+    index = {k: n for n, k in enumerate(catalog.ids)}
+    ready = 0.0 if sol.legs[0].from_id == "injection" else deorbit_days
+    for leg in sol.legs:
+        o, t = orbits.take([index[leg.from_id]]), orbits.take([index[leg.to_id]])
+        a, inc = leg.drift_a_km * 1e3, np.deg2rad(leg.drift_inc_deg)
+        assert transfer_dv(o.a, o.inc, t.a, t.inc, a, inc)[0] == pytest.approx(leg.dv_mps, abs=0.1)
+        days = transfer_duration(o, t, a, inc, leg.departure_day * SECONDS_PER_DAY)[0]
+        assert days / SECONDS_PER_DAY == pytest.approx(leg.duration_days, abs=0.01)
+        assert leg.departure_day == pytest.approx(ready, abs=0.01)
+        ready = leg.departure_day + leg.duration_days + deorbit_days
+    assert sol.total_duration_days == pytest.approx(ready, abs=0.01)
+
+
+def test_operations_time_counts_and_costs_drift_time(base):
+    """T_deorb = 10 days: in the duration, dates consistent leg by leg, dV rises (less drift)."""
+    sol = solve(mission=Mission(deorbit_days=10.0))
+    legs_follow_the_physics(sol, PAPER, 10.0)
+    assert sol.total_duration_days <= 365.25 + 1e-6
+    drift = sum(leg.duration_days for leg in sol.legs)
+    assert sol.total_duration_days == pytest.approx(drift + 5 * 10.0, abs=0.01)
+    assert sol.total_dv_mps > base.total_dv_mps + 10.0
+
+
+def test_vehicle_deorbit_cost_leaves_the_path_and_adds_its_burns(base):
+    """Part V-D: the deorbit manoeuvres do not change the optimal path; the total rises by them."""
+    mission = Mission(deorbit_by="vehicle", deorbit_perigee_km=50.0)
+    sol = solve(mission=mission)
+    assert sol.path == base.path
+    expected = 0.0
+    for debris in sol.path:
+        a = PAPER.a_m[PAPER.ids.index(debris)]
+        ellipse = 0.5 * (a + R_EARTH + 50e3)
+        lower = np.sqrt(MU / a) - np.sqrt(MU * (2 / a - 1 / ellipse))  # vis-viva by hand
+        assert 150.0 < lower < 250.0  # "about 200 m/s per debris" (677-868 km here)
+        expected += 2 * lower  # lower the debris' perigee, then raise the vehicle's back
+        assert sol.operations["per_debris_mps"][debris] == pytest.approx(2 * lower, rel=1e-9)
+    assert sol.operations["scenario"] == "vehicle"
+    assert sol.total_dv_mps == pytest.approx(base.total_dv_mps + expected, abs=0.5)
+
+
+def test_injection_on_the_first_debris_orbit_changes_nothing(base):
+    sol = solve(mission=Mission(injection=DEBRIS_5))
+    assert base.path[0] == "5"
+    assert sol.path == ("injection",) + base.path
+    assert sol.legs[0].dv_mps == pytest.approx(0.0, abs=0.05)  # a few metres of drift radius
+    assert sol.total_dv_mps == pytest.approx(base.total_dv_mps, abs=0.5)
+    assert sol.operations["start"] == "injection"
+
+
+def test_injection_far_away_counts_the_first_transfer(base):
+    mission = Mission(injection=(6978.0, 0.0, 97.0, 150.0))
+    sol = solve(mission=mission)
+    assert sol.path[0] == "injection" and len(sol.path) == 6
+    assert sol.legs[0].from_id == "injection" and sol.legs[0].dv_mps > 1.0
+    assert sol.total_dv_mps == pytest.approx(sum(leg.dv_mps for leg in sol.legs), abs=1e-6)
+    legs_follow_the_physics(sol, PAPER.with_orbit("injection", *mission.injection), 0.0)
+
+
+def test_must_include_and_exclude(base):
+    assert "3" not in base.path
+    with_3 = solve(mission=Mission(must_include=("3",)))
+    assert "3" in with_3.path and len(with_3.path) == 5
+    assert with_3.total_dv_mps >= base.total_dv_mps - 0.5  # a constrained optimum
+    without_10 = solve(mission=Mission(exclude=("10",)))
+    assert "10" not in without_10.path and len(without_10.path) == 5
+    first_2 = solve(mission=Mission(first="2"))
+    assert first_2.path[0] == "2"
+
+
+@pytest.mark.parametrize(
+    ("changes", "message"),
+    [
+        ({"must_include": ("1",), "exclude": ("1",)}, "both in must_include and exclude"),
+        ({"must_include": ("1", "2", "3"), "first": "4", "n": 3}, "name 4 debris but n = 3"),
+        ({"first": "4", "exclude": ("4",)}, "first = '4' is also excluded"),
+        ({"first": "4", "injection": DEBRIS_5}, "cannot both be set"),
+        ({"injection": (6000.0, 0.0, 98.0, 0.0)}, "exceed the Earth's radius"),
+        ({"deorbit_by": "tether"}, "deorbit_by must be"),
+    ],
+)
+def test_contradictory_requests_fail_clearly(changes, message):
+    with pytest.raises(MissionError, match=message):
+        Mission(**changes)
+
+
+def test_unknown_or_too_many_exclusions_name_the_problem():
+    with pytest.raises(MissionError, match="must_include names debris not in the catalog: 99"):
+        solve(mission=Mission(must_include=("99",)))
+    with pytest.raises(MissionError, match=r"n = 5 exceeds the 4 candidate debris \(7 excluded\)"):
+        solve(mission=Mission(exclude=tuple(str(k) for k in range(1, 8))))
+
+
+def test_infeasible_request_is_named():
+    # debris 8 is in every feasible 5-debris path of the pre-optimised edges at T0 = 61 days
+    with pytest.raises(MissionInfeasible, match="exclude = 8"):
+        solve(mission=Mission(exclude=("8",)))
+
+
+def test_injection_runs_end_to_end_with_figures(tmp_path):
+    """Scenario key, CLI, run folder and figures with an injection orbit (not in the catalog)."""
+    import json
+
+    from click.testing import CliRunner
+
+    from sdc_cvx.cli import main
+
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(
+        "[mission]\ninjection = [7128.5, 0.0, 98.4, 174.7]\nmust_include = ['8']\n"
+        "deorbit_by = 'vehicle'\n"
+    )
+    result = CliRunner().invoke(main, ["run", str(scenario), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    data = json.loads((tmp_path / "out" / "solution.json").read_text())
+    assert data["path"][0] == "injection" and "8" in data["path"]
+    assert data["operations"]["scenario"] == "vehicle"
+    assert (tmp_path / "out" / "orbits.png").stat().st_size > 20_000
