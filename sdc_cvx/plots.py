@@ -312,6 +312,11 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
     return fig
 
 
+def _node_name(node_id: str) -> str:
+    """How a path node is named on a figure: the injection orbit is not a debris."""
+    return "injection orbit" if node_id == "injection" else f"debris {node_id}"
+
+
 def _label_debris_lines(ax, debris_alts: dict[str, float]) -> None:
     """Label the debris reference lines in the right margin, spread so labels never overlap."""
     if not debris_alts:
@@ -330,7 +335,7 @@ def _label_debris_lines(ax, debris_alts: dict[str, float]) -> None:
             placed[k] = min(placed[k], placed[k + 1] - gap)
     for debris, y_wanted, y_placed in zip(order, wanted, placed, strict=True):
         ax.annotate(
-            f"debris {debris}\n{debris_alts[debris]:.0f} km",
+            f"{_node_name(debris)}\n{debris_alts[debris]:.0f} km",
             xy=(1.0, y_wanted),
             xycoords="axes fraction",
             xytext=(1.015, y_placed),
