@@ -22,11 +22,14 @@ from .edges import preoptimize
 from .mission import MissionError
 from .output import new_run_folder, write_run
 from .scenario import MILP_BACKENDS, Scenario, ScenarioError, apply_overrides
+from .selection import DEFAULT_MAX_ECCENTRICITY, select
+from .selection import summary as selection_summary
 from .sequential import MissionInfeasible, SolverFailure, solve
 
 INPUT_ERROR = 2
 INFEASIBLE = 3
 SOLVER_FAILED = 4
+MAX_DROPPED_SHOWN = 20
 
 SOLVER_PACKAGES = {
     "HIGHS": "highspy",
@@ -87,7 +90,7 @@ def catalog_options(command):
         "--format",
         "catalog_format",
         default=None,
-        help="Catalog format: csv (tle, omm, gtoc9 are not supported yet) [from the extension].",
+        help="Catalog format: csv, tle, omm or gtoc9 [from the extension].",
     )(command)
     return click.option(
         "--catalog",
@@ -97,6 +100,49 @@ def catalog_options(command):
         help="Debris catalog (CSV: id, a_km, e, inc_deg, raan_deg[, epoch]) "
         "[scenario's, else the paper's Table 5].",
     )(command)
+
+
+def selection_options(command):
+    """Candidate filters (see :func:`sdc_cvx.selection.select`)."""
+    options = [
+        click.option("--altitude-km", nargs=2, type=float, default=None,
+                     metavar="LOW HIGH", help="Keep altitudes a - R_T in [LOW, HIGH] km."),
+        click.option("--inclination-deg", nargs=2, type=float, default=None,
+                     metavar="LOW HIGH", help="Keep inclinations in [LOW, HIGH] deg."),
+        click.option("--max-eccentricity", type=float, default=None, metavar="E",
+                     help=f"Drop e > E [{DEFAULT_MAX_ECCENTRICITY:g}: orbits are costed as "
+                     "circular]."),
+        click.option("--ids", "ids", multiple=True, metavar="PATTERN",
+                     help="Keep ids matching PATTERN (shell-style, repeatable)."),
+        click.option("--exclude-ids", multiple=True, metavar="PATTERN",
+                     help="Drop ids matching PATTERN (shell-style, repeatable)."),
+    ]  # fmt: skip
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def select_candidates(catalog: Catalog, filters: dict, echo) -> tuple[Catalog, pd.DataFrame]:
+    """The candidates kept by the ``filters`` options; exit 2 if none or a bad filter.
+
+    ``echo`` gets the "kept K of N candidates (...)" line when a filter is given or a
+    debris is dropped (near-polar orbits and e > 0.05 are always dropped).
+    """
+    try:
+        kept, report = select(
+            catalog, altitude_km=filters["altitude_km"],
+            inclination_deg=filters["inclination_deg"],
+            eccentricity_max=filters["max_eccentricity"], ids=filters["ids"] or None,
+            exclude_ids=filters["exclude_ids"] or None,
+        )  # fmt: skip
+    except ValueError as err:
+        fail(f"candidate selection: {err}")
+    line = selection_summary(kept, report)
+    if len(kept) == 0:
+        fail(f"no candidate left in {catalog.source}: {line}")
+    if len(report) or any(value for value in filters.values()):
+        echo(line)
+    return kept, report
 
 
 @click.group()
@@ -152,6 +198,7 @@ def print_iteration(record):
 @main.command()
 @scenario_argument
 @catalog_options
+@selection_options
 @click.option("--n", type=int, default=None, help="Number of debris to remove [5].")
 @click.option("--tmax-days", type=float, default=None, help="Mission duration limit [365.25 days].")
 @click.option("--deorbit-days", type=float, default=None, help="Operations time per debris [0].")
@@ -189,9 +236,10 @@ def print_iteration(record):
     hidden=True,
     help="Force the per-iteration lines on or off [on when stderr is a terminal].",
 )
-def run(scenario_file, catalog_path, catalog_format, n, tmax_days, deorbit_days, preopt_days,
-        dv_max_mps, min_transfer_days, backend, time_limit_s, mip_gap, threads, out_dir, quiet,
-        json_out, svg, progress):  # fmt: skip
+def run(scenario_file, catalog_path, catalog_format, altitude_km, inclination_deg,
+        max_eccentricity, ids, exclude_ids, n, tmax_days, deorbit_days, preopt_days, dv_max_mps,
+        min_transfer_days, backend, time_limit_s, mip_gap, threads, out_dir, quiet, json_out, svg,
+        progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
     SCENARIO.toml (optional; default the paper's case) gives the catalog, mission and
@@ -207,15 +255,19 @@ def run(scenario_file, catalog_path, catalog_format, n, tmax_days, deorbit_days,
     )  # fmt: skip
     catalog = read_catalog(scenario)
     mission, solver = scenario.mission, scenario.solver
+
+    def info(message: str) -> None:
+        if not quiet:
+            click.echo(message, err=True)
+
+    filters = dict(altitude_km=altitude_km, inclination_deg=inclination_deg,
+                   max_eccentricity=max_eccentricity, ids=ids, exclude_ids=exclude_ids)  # fmt: skip
+    catalog, _ = select_candidates(catalog, filters, info)
     try:
         mission.check_candidates(catalog.ids)
     except MissionError as err:
         fail(f"mission.n: {err} of {catalog.source}")
     check_backend(solver)
-
-    def info(message: str) -> None:
-        if not quiet:
-            click.echo(message, err=True)
 
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
     info(f"{catalog!r}: choosing {mission.n}, T_max {mission.tmax_days:g} days, {solver.backend}")
@@ -235,12 +287,19 @@ def run(scenario_file, catalog_path, catalog_format, n, tmax_days, deorbit_days,
                   catalog=catalog, formats=("png", "svg") if svg else ("png",))  # fmt: skip
     except OSError as err:
         fail(f"cannot write the run folder {folder or '.'}: {err.strerror or err}")
+    start = None  # the mission start date the RAANs refer to (Catalog.start)
+    if catalog.start is not None:
+        start = f"start     {catalog.start.isoformat()} (the catalog's RAANs are at this date)"
     if json_out:
         click.echo(solution.to_json())
         info(solution.summary())
+        if start:
+            info(start)
         info(f"results   {folder}/solution.json")
     else:
         click.echo(solution.summary())
+        if start:
+            click.echo(start)
         click.echo(f"results   {folder}/solution.json")
     if solution.status != "converged":
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
@@ -272,12 +331,27 @@ def catalog_table(catalog: Catalog) -> str:
     "--format",
     "catalog_format",
     default=None,
-    help="csv (tle, omm, gtoc9 are not supported yet) [from the extension].",
+    help="csv, tle, omm or gtoc9 [from the extension].",
 )
-def catalog_command(file, catalog_format):
-    """Validate a debris catalog and print it as a table (default: the paper's Table 5)."""
+@selection_options
+def catalog_command(file, catalog_format, altitude_km, inclination_deg, max_eccentricity, ids,
+                    exclude_ids):  # fmt: skip
+    """Validate a debris catalog and print it as a table (default: the paper's Table 5).
+
+    The candidate filters drop debris as ``run`` does; the dropped ones and why go to
+    stderr.
+    """
     scenario = build_scenario(None, catalog_path=file, catalog_format=catalog_format)
     catalog = read_catalog(scenario)
+    filters = dict(altitude_km=altitude_km, inclination_deg=inclination_deg,
+                   max_eccentricity=max_eccentricity, ids=ids, exclude_ids=exclude_ids)  # fmt: skip
+    catalog, report = select_candidates(catalog, filters, lambda line: click.echo(line, err=True))
+    # the orbits dropped, and why (not those the --ids / --exclude-ids patterns leave out)
+    orbits = report[~report["checks"].isin(["ids", "excluded", "ids,excluded"])]
+    for row in orbits.head(MAX_DROPPED_SHOWN).itertuples():
+        click.echo(f"  dropped {row.id}: {row.reason}", err=True)
+    if len(orbits) > MAX_DROPPED_SHOWN:
+        click.echo(f"  ... and {len(orbits) - MAX_DROPPED_SHOWN} more dropped", err=True)
     click.echo(catalog_table(catalog))
     start = "" if catalog.start is None else f", RAANs at {catalog.start.isoformat()}"
     click.echo(f"{len(catalog)} debris from {catalog.source}{start}", err=True)

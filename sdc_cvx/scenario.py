@@ -46,6 +46,7 @@ import tomli_w
 from .backends import SolverOptions
 from .catalog import Catalog
 from .mission import Mission, MissionError
+from .readers import read_gtoc9, read_omm, read_tle
 
 __all__ = [
     "CATALOG_FORMATS",
@@ -60,9 +61,15 @@ __all__ = [
 CATALOG_FORMATS = ("csv", "tle", "omm", "gtoc9")
 """Catalog formats a scenario may name."""
 
-_READERS: dict[str, Callable[[Path], Catalog]] = {"csv": Catalog.from_csv}
+_READERS: dict[str, Callable[[Path], Catalog]] = {
+    "csv": Catalog.from_csv,
+    "tle": read_tle,
+    "omm": read_omm,
+    "gtoc9": read_gtoc9,
+}
+"""Reader of each format (see :mod:`sdc_cvx.readers`)."""
 READABLE_FORMATS = tuple(_READERS)
-"""Formats that can be read today (the others are recognised, and refused clearly)."""
+"""Formats that can be read today (a format without a reader would be refused clearly)."""
 
 EXTENSION_FORMATS = {
     ".csv": "csv",

@@ -178,13 +178,14 @@ def test_catalog_formats(tmp_path):
     (tmp_path / "debris.tle").write_text("")
     (tmp_path / "debris.txt").write_text("")
     (tmp_path / "debris.dat").write_text("")
-    message = load_error(tmp_path, '[catalog]\npath = "debris.tle"\n')
-    assert "format 'tle' is not supported yet" in message and "catalog.format" in message
-    message = load_error(tmp_path, '[catalog]\npath = "debris.txt"\n')
-    assert "format 'tle' is not supported yet" in message and "'.txt'" in message  # says why
+    scenario = load(write(tmp_path, '[catalog]\npath = "debris.tle"\n'))
+    assert scenario.catalog_format == "tle"  # from the extension
+    with pytest.raises(CatalogError, match="empty file: no TLE element sets"):
+        scenario.load_catalog()  # read only when asked for
+    assert load(write(tmp_path, '[catalog]\npath = "debris.txt"\n')).catalog_format == "tle"
     for fmt in ("omm", "gtoc9"):
-        message = load_error(tmp_path, f'[catalog]\npath = "debris.txt"\nformat = "{fmt}"\n')
-        assert f"format '{fmt}' is not supported yet" in message
+        scenario = load(write(tmp_path, f'[catalog]\npath = "debris.txt"\nformat = "{fmt}"\n'))
+        assert scenario.catalog_format == fmt
     message = load_error(tmp_path, '[catalog]\npath = "debris.dat"\n')
     assert "cannot tell the format" in message and ", ".join(CATALOG_FORMATS) in message
     message = load_error(tmp_path, '[catalog]\npath = "debris.tle"\nformat = "xls"\n')
@@ -252,8 +253,7 @@ def test_catalog_override_is_relative_to_the_current_directory(tmp_path, debris_
     with pytest.raises(ScenarioError, match="catalog.path: file not found"):
         scenario.with_overrides(catalog="other.csv")
     (tmp_path / "debris.tle").write_text("")
-    with pytest.raises(ScenarioError, match="format 'tle' is not supported yet"):
-        scenario.with_overrides(catalog="debris.tle")  # format chosen again from the extension
+    assert scenario.with_overrides(catalog="debris.tle").catalog_format == "tle"  # chosen again
 
 
 # ---------------------------------------------------------------------- writing
