@@ -10,6 +10,7 @@ from .edges import EdgeTable, preoptimize
 from .mission import Mission, MissionError
 from .sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
 from .solution import Solution
+from .sweep import plot_sweep, sweep
 
 __all__ = [
     "Catalog",
@@ -22,7 +23,9 @@ __all__ = [
     "Solution",
     "SolverFailure",
     "SolverOptions",
+    "plot_sweep",
     "preoptimize",
     "solve",
+    "sweep",
 ]
 __version__ = "0.1.0"

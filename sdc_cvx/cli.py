@@ -387,3 +387,46 @@ def solvers():
     for row in rows:
         click.echo("  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)).rstrip())
     click.echo(f"* default backend; cvxpy {importlib.metadata.version('cvxpy')}")
+
+
+@main.command("sweep")
+@click.argument("study_file", metavar="STUDY.toml", type=click.Path(dir_okay=False))
+@click.option(
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Output folder [a new sdc_sweep_* folder here].",
+)
+@click.option("--workers", type=int, default=None, help="Local processes [one per core].")
+@click.option(
+    "--scheduler",
+    default=None,
+    help="Address of a Dask distributed scheduler (tcp://host:8786) instead of a "
+    "local pool; needs the dask extra.",
+)
+@click.option("--resume", is_flag=True, help="Skip the scenarios already finished in --out.")
+@click.option("--progress/--no-progress", default=None, hidden=True)
+def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
+    """Run a trade study: a base scenario and a grid / list of overrides, one row each.
+
+    Every scenario is validated before any solve; each result is written as soon as it
+    finishes (results.csv and one solution.json per scenario), so --resume after an
+    interruption only runs what is missing.
+    """
+    from .sweep import SweepError, load_study, run_study  # dask only when a scheduler is used
+
+    try:
+        study = load_study(study_file)
+    except (ScenarioError, SweepError, OSError) as err:
+        fail(str(err))
+    folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
+    show = sys.stderr.isatty() if progress is None else progress
+    try:
+        results = run_study(study, folder, workers=workers, scheduler=scheduler, resume=resume,
+                            progress=show)  # fmt: skip
+    except SweepError as err:
+        fail(str(err))
+    done = results["status"].isin(["converged", "converged_unconfirmed", "iteration_limit"])
+    click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
+               f"{folder}/results.csv")  # fmt: skip

@@ -26,11 +26,11 @@ def write_atomic(path: Path, text: str) -> None:
         raise
 
 
-def new_run_folder(parent: Path | str = ".") -> Path:
-    """A new, empty folder ``sdc_run_YYYYmmdd-HHMMSS[-k]`` under ``parent``."""
+def new_run_folder(parent: Path | str = ".", prefix: str = "sdc_run_") -> Path:
+    """A new, empty folder ``{prefix}YYYYmmdd-HHMMSS[-k]`` under ``parent``."""
     stamp = datetime.now().strftime("%Y%m%d-%H%M%S")
     for k in range(1000):
-        folder = Path(parent) / (f"sdc_run_{stamp}" + (f"-{k}" if k else ""))
+        folder = Path(parent) / (f"{prefix}{stamp}" + (f"-{k}" if k else ""))
         try:
             folder.mkdir(parents=True)
             return folder

@@ -248,3 +248,25 @@ def test_edges_with_a_scenario_and_override(tmp_path):
     assert len(result.stdout.strip().splitlines()) == 1 + fewer.counts()["kept"]
     result = CliRunner().invoke(main, ["edges", str(tmp_path / "scenario.toml"), "--dv-max", "-1"])
     assert_one_line_error(result, "mission.dv_max_mps must be > 0")
+
+
+def test_sweep_command_writes_one_row_per_scenario(tmp_path):
+    study = tmp_path / "study.toml"
+    study.write_text(
+        '[base.mission]\nn = 3\n[grid]\n"mission.tmax_days" = [300.0, 365.25]\n'
+        '[[cases]]\n"mission.tmax_days" = 5.0\n'
+    )
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["sweep", str(study), "--out", str(out), "--workers", "1"])
+    assert result.exit_code == 0, result.output
+    assert "2 of 3 scenarios solved" in result.output
+    results = pd.read_csv(out / "results.csv")
+    assert sorted(results["status"]) == ["converged", "converged", "infeasible"]
+
+
+def test_sweep_command_rejects_a_bad_study_before_solving(tmp_path):
+    study = tmp_path / "study.toml"
+    study.write_text('[grid]\n"mission.tmax" = [300.0]\n')
+    result = CliRunner().invoke(main, ["sweep", str(study), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "mission.tmax" in result.output
+    assert not (tmp_path / "out" / "results.csv").exists()

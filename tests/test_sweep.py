@@ -1,0 +1,271 @@
+"""Trade-study sweeps: study files, local pool and Dask, resume after a kill, failures, figure."""
+
+import io
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from matplotlib.figure import Figure
+
+from sdc_cvx.scenario import Scenario, ScenarioError
+from sdc_cvx.sweep import (
+    RESULT_COLUMNS,
+    Study,
+    SweepError,
+    load_study,
+    plot_sweep,
+    read_results,
+    run_study,
+    solve_scenario,
+    sweep,
+)
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+STUDY = """\
+base = "paper.toml"
+
+[grid]                  # unquoted dotted keys: the same as "mission.n"
+mission.n = [3, 4]
+mission.tmax_days = [300, 365.25]
+
+[[cases]]
+label = "too short"
+"mission.n" = 3
+"mission.tmax_days" = 5
+"""
+KEYS = 5  # 2 x 2 grid + 1 case
+
+
+@pytest.fixture(scope="module")
+def study_file(tmp_path_factory) -> Path:
+    folder = tmp_path_factory.mktemp("study")
+    shutil.copy(EXAMPLES / "paper.toml", folder / "paper.toml")
+    (folder / "study.toml").write_text(STUDY)
+    return folder / "study.toml"
+
+
+@pytest.fixture(scope="module")
+def reference(study_file, tmp_path_factory) -> pd.DataFrame:
+    """The study solved without interruption on the local process pool."""
+    out = tmp_path_factory.mktemp("reference")
+    return run_study(load_study(study_file), out, workers=2, progress=False)
+
+
+def without_seconds(frame: pd.DataFrame) -> pd.DataFrame:
+    return frame.drop(columns="seconds").reset_index(drop=True)
+
+
+# ---------------------------------------------------------------------- study files
+def test_example_study_is_the_grid_over_tmax_and_n():
+    study = load_study(EXAMPLES / "study_tmax_n.toml")
+    assert study.base == Scenario.load(EXAMPLES / "paper.toml")
+    assert study.parameters == ("mission.tmax_days", "mission.n")
+    assert len(study) == 9 and len({s.key for s in study.scenarios}) == 9
+    pairs = [(s.scenario.mission.tmax_days, s.scenario.mission.n) for s in study.scenarios]
+    assert pairs == [(t, n) for t in (300.0, 365.25, 450.0) for n in (4, 5, 6)]
+    assert study.scenarios[0].label == "tmax_days=300 n=4"
+
+
+def test_grid_then_cases_with_stable_keys(study_file):
+    study = load_study(study_file)
+    assert [s.label for s in study.scenarios] == [
+        "n=3 tmax_days=300",
+        "n=3 tmax_days=365.25",
+        "n=4 tmax_days=300",
+        "n=4 tmax_days=365.25",
+        "too short",
+    ]
+    assert study.scenarios[-1].overrides == {"mission.n": 3, "mission.tmax_days": 5.0}
+    again = Study.from_dict(
+        {
+            "base": {"mission": {"n": 5}},
+            "grid": {"mission.tmax_days": [365.25, 300.0], "mission.n": [4, 3]},
+        },
+    )
+
+    # a key's hash depends on the values only, not on how or in which order they were written
+    def digests(scenarios):
+        return {s.key.rsplit("-", 1)[1] for s in scenarios}
+
+    assert digests(again.scenarios) == digests(study.scenarios[:4])
+    # the self-contained study written out reads back the same
+    assert Study.from_dict(tomllib.loads(study.to_toml())) == study
+
+
+def test_invalid_key_is_rejected_before_any_solve(tmp_path):
+    (tmp_path / "bad.toml").write_text(
+        f'base = "{EXAMPLES / "paper.toml"}"\n[grid]\n"mission.tmax_dayz" = [300, 400]\n'
+    )
+    with pytest.raises(ScenarioError, match=r"mission\.tmax_dayz.*case.*tmax_dayz=300"):
+        sweep(tmp_path / "bad.toml", tmp_path / "out")
+    assert not (tmp_path / "out").exists()  # nothing written, nothing solved
+
+
+def test_invalid_value_names_the_dotted_key_and_the_case():
+    data = {"grid": {"mission.n": [4, 1]}, "cases": [{"label": "odd", "solver.mip_gap": 2.0}]}
+    with pytest.raises(ScenarioError) as err:
+        Study.from_dict(data)
+    message = str(err.value)
+    assert "mission.n must be >= 2" in message and "'n=1'" in message
+    assert "solver.mip_gap" in message and "'odd'" in message
+
+
+@pytest.mark.parametrize(
+    "data, words",
+    [
+        ({"grid": {"n": [4, 5]}}, "not a dotted key"),
+        ({"grid": {"mission.n": 4}}, "must be an array"),
+        ({"grid": {"mission.n": []}}, "has no values"),
+        ({"sweep": {"workers": 2}}, "unknown study key 'sweep'"),
+        ({"grid": {"mission.n": [4, 4]}}, "is the same scenario as"),
+    ],
+)
+def test_malformed_studies(data, words):
+    with pytest.raises(ScenarioError, match=words):
+        Study.from_dict(data)
+
+
+def test_worker_function_never_raises():
+    row = solve_scenario("[mission\nn = ", key="broken")
+    assert row["key"] == "broken" and row["status"] == "error"
+    assert row["error"].startswith("TOMLDecodeError") and "Traceback" in row["traceback"]
+    row = solve_scenario('[catalog]\npath = "/nonexistent/debris.csv"\n')
+    assert row["status"] == "error" and "debris.csv" in row["error"]
+
+
+# ---------------------------------------------------------------------- running
+def test_results_table_and_files(reference, study_file):
+    out = Path(reference.attrs["out_dir"])
+    study = load_study(study_file)
+    assert list(reference["key"]) == [s.key for s in study.scenarios]
+    assert list(reference.columns) == [
+        "key",
+        "label",
+        "mission.n",
+        "mission.tmax_days",
+        *RESULT_COLUMNS,
+        "scenario_sha",
+    ]
+    solved = reference[reference["status"] == "converged"]
+    assert len(solved) == 4 and solved["error"].isna().all()
+    assert (solved["total_duration_days"] <= solved["mission.tmax_days"] + 1e-6).all()
+    assert solved["path"].str.count("->").tolist() == [2, 2, 3, 3]
+    assert (solved["iterations"] > 0).all() and (solved["backend"] == "HIGHS").all()
+    pd.testing.assert_frame_equal(read_results(out), reference)
+    assert (out / "study.toml").read_text() == STUDY
+    for item in study.scenarios:
+        folder = out / "scenarios" / item.key
+        as_run = Scenario.load(folder / "scenario.toml")
+        assert as_run.mission == item.scenario.mission and as_run.solver.threads == 1
+        solved = item.label != "too short"
+        assert (folder / "solution.json").exists() == solved
+        assert (folder / "error.txt").exists() != solved
+    assert not list(out.rglob("*.tmp"))
+
+
+def test_infeasible_scenario_is_recorded_while_the_others_succeed(reference):
+    failed = reference.set_index("label").loc["too short"]
+    assert failed["status"] == "infeasible" and "T_max = 5 days" in failed["error"]
+    assert pd.isna(failed["total_dv_mps"]) and failed["path"] is None
+    assert (reference["status"] == "converged").sum() == KEYS - 1
+
+
+def test_dask_cluster_gives_the_same_table(study_file, reference, tmp_path):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+    ) as cluster:
+        frame = run_study(
+            load_study(study_file), tmp_path, scheduler=cluster.scheduler_address, progress=False
+        )
+    pd.testing.assert_frame_equal(without_seconds(frame), without_seconds(reference))
+
+
+def test_killed_sweep_resumes_with_every_scenario_once(study_file, reference, tmp_path):
+    out = tmp_path / "out"
+    code = (
+        "from sdc_cvx.sweep import sweep; "
+        f"sweep({str(study_file)!r}, {str(out)!r}, workers=1, progress=False)"
+    )
+    process = subprocess.Popen([sys.executable, "-c", code], start_new_session=True)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and process.poll() is None:
+            if (out / "results.csv").exists() and len(read_results(out)) >= 1:
+                break
+            time.sleep(0.05)
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)  # the sweep and its worker processes
+        process.wait()
+    before = read_results(out)
+    assert 1 <= len(before) < KEYS, "the sweep was not killed midway"
+
+    ran = []
+    resumed = run_study(
+        load_study(study_file),
+        out,
+        resume=True,
+        workers=2,
+        progress=lambda p: ran.append(p.row) if p.row else None,
+    )
+    assert len(ran) == KEYS - len(before)  # only the missing scenarios ran
+    assert resumed["key"].is_unique and len(resumed) == KEYS
+    kept = resumed.set_index("key").loc[before["key"]].reset_index()
+    pd.testing.assert_frame_equal(kept, before)  # rows from before untouched
+    pd.testing.assert_frame_equal(without_seconds(resumed), without_seconds(reference))
+
+
+def test_resume_of_a_finished_sweep_runs_nothing(study_file, reference, tmp_path):
+    shutil.copytree(reference.attrs["out_dir"], tmp_path / "out")
+    ran = []
+    frame = run_study(
+        load_study(study_file), tmp_path / "out", resume=True, progress=lambda p: ran.append(p.row)
+    )
+    assert ran == [None]  # the first report only
+    pd.testing.assert_frame_equal(without_seconds(frame), without_seconds(reference))
+    assert frame["seconds"].tolist() == reference["seconds"].tolist()
+
+
+def test_folder_with_results_is_protected(study_file, reference, tmp_path):
+    shutil.copytree(reference.attrs["out_dir"], tmp_path / "out")
+    with pytest.raises(SweepError, match="resume=True"):
+        run_study(load_study(study_file), tmp_path / "out", progress=False)
+    other = Study.from_dict(
+        {
+            "base": str(EXAMPLES / "paper.toml"),
+            "grid": {"mission.n": [3, 4], "mission.tmax_days": [300, 400]},
+        }
+    )
+    with pytest.raises(SweepError, match="another study"):
+        run_study(other, tmp_path / "out", resume=True, progress=False)
+    pd.testing.assert_frame_equal(read_results(tmp_path / "out"), reference)
+
+
+# ---------------------------------------------------------------------- figure
+def test_plot_sweep_draws_dv_against_the_swept_parameter(reference):
+    fig = plot_sweep(reference, "tmax_days", hue="n", annotate=True)
+    assert isinstance(fig, Figure)
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "mission.tmax_days" and "V [m/s]" in ax.get_ylabel()
+    lines = [line for line in ax.get_lines() if line.get_linestyle() == "-"]
+    assert len(lines) == 2  # n = 3 and n = 4
+    assert list(lines[1].get_xdata()) == [300.0, 365.25]
+    crosses = [line for line in ax.get_lines() if line.get_marker() == "x"]
+    assert [list(c.get_xdata()) for c in crosses if len(c.get_xdata())][0] == [5.0]
+    assert any("\u2192" in text.get_text() for text in ax.texts)  # paths annotated
+    fig.savefig(io.BytesIO(), format="png")
+    # from the folder, into a given axes
+    other = Figure()
+    ax = other.add_subplot()
+    assert plot_sweep(reference.attrs["out_dir"], "mission.n", ax=ax) is other
+    assert ax.get_xlabel() == "mission.n"
+    with pytest.raises(KeyError, match="no column 'gap'"):
+        plot_sweep(reference, "gap")
