@@ -95,6 +95,9 @@ class SolverOptions:
         Show the backend's log.
     seed : int, optional
         Random seed, where the backend has one.
+    fallback : tuple of str
+        Backends tried in turn, with the same settings, when ``backend`` raises, fails
+        or returns a result that fails the check (:func:`solve_with_fallback`).
     """
 
     backend: str = DEFAULT_BACKEND
@@ -103,9 +106,11 @@ class SolverOptions:
     threads: int | None = None
     verbose: bool = False
     seed: int | None = None
+    fallback: tuple[str, ...] = ()
 
     def __post_init__(self):
         object.__setattr__(self, "backend", self.backend.upper())
+        object.__setattr__(self, "fallback", tuple(str(b).upper() for b in self.fallback))
         if self.time_limit_s is not None and not self.time_limit_s > 0:
             raise ValueError(f"time_limit_s must be > 0, got {self.time_limit_s!r}")
         if self.mip_gap is not None and not 0 <= self.mip_gap < 1:
@@ -937,6 +942,11 @@ def fallback_reason(report: SolveReport, *, retry_no_solution: bool = False) -> 
     if report.status == Status.NO_SOLUTION and retry_no_solution:
         return f"no solution within the time limit: {report.message}"
     return None
+
+
+def chain_of(options: SolverOptions) -> list[SolverOptions]:
+    """``options`` followed by one copy per backend of its ``fallback`` list."""
+    return [options] + [replace(options, backend=name, fallback=()) for name in options.fallback]
 
 
 def solve_with_fallback(

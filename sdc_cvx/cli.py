@@ -70,9 +70,13 @@ def read_catalog(scenario: Scenario) -> Catalog:
 
 
 def check_backend(solver: SolverOptions) -> None:
-    """Exit 2 unless the chosen backend is installed."""
+    """Exit 2 unless the chosen backend (or one of its fallbacks) is installed."""
     installed = set(cp.installed_solvers())
-    if solver.backend not in installed:
+    usable_chain = [b for b in (solver.backend, *solver.fallback) if b in installed]
+    if usable_chain and solver.backend not in installed:
+        click.echo(f"warning: {solver.backend} is not installed here; the fallback "
+                   f"{usable_chain[0]} will be used", err=True)  # fmt: skip
+    if not usable_chain:
         usable = ", ".join(name for name in MILP_BACKENDS if name in installed) or "none"
         fail(
             f"solver.backend {solver.backend!r} is not installed here; installed MILP "
@@ -216,6 +220,13 @@ def print_iteration(record):
 @click.option("--mip-gap", type=float, default=None, help="Relative MIP gap [1e-6].")
 @click.option("--threads", type=int, default=None, help="Threads of the MILP backend.")
 @click.option(
+    "--fallback",
+    "fallback",
+    multiple=True,
+    metavar="BACKEND",
+    help="Backend tried next when the previous one fails (repeatable).",
+)
+@click.option(
     "--out",
     "out_dir",
     type=click.Path(file_okay=False),
@@ -238,8 +249,8 @@ def print_iteration(record):
 )
 def run(scenario_file, catalog_path, catalog_format, altitude_km, inclination_deg,
         max_eccentricity, ids, exclude_ids, n, tmax_days, deorbit_days, preopt_days, dv_max_mps,
-        min_transfer_days, backend, time_limit_s, mip_gap, threads, out_dir, quiet, json_out, svg,
-        progress):  # fmt: skip
+        min_transfer_days, backend, time_limit_s, mip_gap, threads, fallback, out_dir, quiet,
+        json_out, svg, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
     SCENARIO.toml (optional; default the paper's case) gives the catalog, mission and
@@ -252,6 +263,7 @@ def run(scenario_file, catalog_path, catalog_format, altitude_km, inclination_de
         tmax_days=tmax_days, deorbit_days=deorbit_days, preopt_days=preopt_days,
         dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days, backend=backend,
         time_limit_s=time_limit_s, mip_gap=mip_gap, threads=threads,
+        fallback=tuple(fallback) or None,
     )  # fmt: skip
     catalog = read_catalog(scenario)
     mission, solver = scenario.mission, scenario.solver

@@ -25,7 +25,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
-from .backends import SolveReport, SolverOptions, Status, solve_milp
+from .backends import SolveReport, SolverOptions, Status, chain_of, solve_with_fallback
 from .catalog import Catalog
 from .edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
 from .linearize import EdgeGeometry, TrustRegion, linearize
@@ -207,6 +207,9 @@ class _Driver:
         self.nodes = nodes
         self.catalog, self.mission, self.solver, self.settings = catalog, mission, solver, settings
         self.progress = progress or (lambda record: None)
+        self.chain = chain_of(solver)
+        self.backends_used: set[str] = set()
+        self.last_switch = None
         self.timings = {}
         first_ops = (
             nodes.deorbit_days.min() if nodes.first is None else nodes.deorbit_days[nodes.first]
@@ -271,7 +274,14 @@ class _Driver:
         coefficients = linearize(self.geometry, self.region, tmax_days=self.mission.tmax_days,
                                  depart_range=self.windows)  # fmt: skip
         self.model.update(coefficients)
-        report = solve_milp(self.model.problem, self.solver, warm_start=k > 0)
+        report = solve_with_fallback(self.model.problem, self.chain, warm_start=k > 0)
+        self.backends_used.add(report.backend)
+        if report.fallbacks:
+            switched = "; ".join(report.fallbacks)
+            note = (note + "; " if note else "") + switched
+            if switched != self.last_switch:  # once per change, not once per iteration
+                self.notes.append(f"from iteration {k}: {switched}")
+            self.last_switch = switched
         if k == 0:
             self.timings["first_solve_overhead_s"] = report.overhead_seconds
         if not report.status.has_solution:
@@ -562,7 +572,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         },  # fmt: skip
         total_duration_days=plan.end_day,
         status=status,
-        backend=solver.backend,
+        backend="+".join(sorted(driver.backends_used)) or solver.backend,
         mission=mission,
         iterations=tuple(driver.history),
         model_size={

@@ -270,3 +270,14 @@ def test_sweep_command_rejects_a_bad_study_before_solving(tmp_path):
     result = CliRunner().invoke(main, ["sweep", str(study), "--out", str(tmp_path / "out")])
     assert result.exit_code == 2 and "mission.tmax" in result.output
     assert not (tmp_path / "out" / "results.csv").exists()
+
+
+def test_run_falls_back_from_an_unavailable_backend(tmp_path):
+    result = CliRunner().invoke(
+        main,
+        ["run", "--backend", "MOSEK", "--fallback", "HIGHS", "--quiet", "--out", str(tmp_path)],
+    )
+    assert result.exit_code == 0, result.output
+    data = json.loads((tmp_path / "solution.json").read_text())
+    assert data["backend"] == "HIGHS"
+    assert any("MOSEK failed" in note and "used HIGHS" in note for note in data["notes"])

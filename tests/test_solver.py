@@ -111,10 +111,10 @@ def test_time_limit_without_incumbent_is_not_a_solution(monkeypatch):
     import sdc_cvx.sequential as sequential
     from sdc_cvx.backends import SolveReport, Status
 
-    def no_incumbent(problem, options, warm_start=False):
+    def no_incumbent(problem, chain, warm_start=False):
         return SolveReport(Status.NO_SOLUTION, None, None, None, 0, 0.1, 0.0, "HIGHS", "time limit")
 
-    monkeypatch.setattr(sequential, "solve_milp", no_incumbent)
+    monkeypatch.setattr(sequential, "solve_with_fallback", no_incumbent)
     with pytest.raises(SolverFailure, match="raise the time limit"):
         solve()
 
@@ -150,3 +150,23 @@ def test_two_half_segment_duration_model_reaches_the_same_plan(paper_solution):
     assert sol.path == paper_solution.path
     assert sol.total_dv_mps == pytest.approx(paper_solution.total_dv_mps, abs=0.5)
     check_legs_against_physics(sol, Catalog.paper_case(), Mission())
+
+
+def test_a_failing_first_backend_falls_back_and_says_so(paper_solution, monkeypatch):
+    """Issue 6: the first backend of the chain crashes; the run finishes on the next one."""
+    import sdc_cvx.backends as backends
+    from sdc_cvx import SolverOptions
+
+    real = backends.solve_milp
+
+    def crashing_scipy(problem, options, *, warm_start=False):
+        if options.backend == "SCIPY":
+            raise RuntimeError("simulated crash")
+        return real(problem, options, warm_start=warm_start)
+
+    monkeypatch.setattr(backends, "solve_milp", crashing_scipy)
+    sol = solve(solver=SolverOptions(backend="SCIPY", fallback=("HIGHS",)))
+    assert sol.path == paper_solution.path
+    assert sol.total_dv_mps == pytest.approx(paper_solution.total_dv_mps, abs=0.5)
+    assert any("SCIPY failed" in note and "used HIGHS" in note for note in sol.notes)
+    assert "SCIPY failed" in sol.iterations[0].note
