@@ -168,25 +168,9 @@ class Scenario:
             Unreadable file, invalid TOML, unknown table or key, wrong type, value out
             of range, missing catalog file or unsupported catalog format.
         """
-        file = Path(path)
         where = os.fspath(path)
-        try:
-            text = file.read_bytes().decode("utf-8")
-        except FileNotFoundError:
-            raise ScenarioError.collect(where, ["file not found"]) from None
-        except IsADirectoryError:
-            raise ScenarioError.collect(where, ["is a directory, not a scenario file"]) from None
-        except UnicodeDecodeError as exc:
-            raise ScenarioError.collect(
-                where, [f"not a UTF-8 text file (undecodable byte at offset {exc.start})"]
-            ) from None
-        except OSError as exc:
-            raise ScenarioError.collect(where, [f"not readable ({exc.strerror or exc})"]) from None
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            raise ScenarioError.collect(where, [f"invalid TOML: {exc}"]) from None
-        source = file.resolve()
+        text, data = read_toml(path, "scenario file")
+        source = Path(path).resolve()
         return _build(data, where, base=source.parent, source=source)
 
     def with_overrides(self, **changes) -> Scenario:
@@ -264,6 +248,27 @@ class Scenario:
 
     def _where(self) -> str:
         return "scenario" if self.source is None else os.fspath(self.source)
+
+
+def read_toml(path: str | os.PathLike, what: str) -> tuple[str, dict]:
+    """Text and parsed content of a TOML file, or a ScenarioError saying what is wrong."""
+    where = os.fspath(path)
+    try:
+        text = Path(path).read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise ScenarioError.collect(where, ["file not found"]) from None
+    except IsADirectoryError:
+        raise ScenarioError.collect(where, [f"is a directory, not a {what}"]) from None
+    except UnicodeDecodeError as exc:
+        raise ScenarioError.collect(
+            where, [f"not a UTF-8 text file (undecodable byte at offset {exc.start})"]
+        ) from None
+    except OSError as exc:
+        raise ScenarioError.collect(where, [f"not readable ({exc.strerror or exc})"]) from None
+    try:
+        return text, tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError.collect(where, [f"invalid TOML: {exc}"]) from None
 
 
 def load(path: str | os.PathLike) -> Scenario:

@@ -63,7 +63,6 @@ import traceback
 import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from datetime import datetime
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -71,8 +70,8 @@ import numpy as np
 import pandas as pd
 import tomli_w
 
-from .output import write_atomic
-from .scenario import Scenario, ScenarioError
+from .output import new_run_folder, write_atomic
+from .scenario import Scenario, ScenarioError, read_toml
 from .sequential import MissionInfeasible, SolverFailure, solve
 
 __all__ = [
@@ -250,25 +249,9 @@ def load_study(path: str | os.PathLike) -> Study:
         non-empty array, a key that is not dotted, an unknown key or an invalid value in
         any scenario (named by dotted key and case), or duplicate scenarios.
     """
-    file = Path(path)
     where = os.fspath(path)
-    try:
-        text = file.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise ScenarioError.collect(where, ["file not found"]) from None
-    except IsADirectoryError:
-        raise ScenarioError.collect(where, ["is a directory, not a study file"]) from None
-    except UnicodeDecodeError as exc:
-        raise ScenarioError.collect(
-            where, [f"not a UTF-8 text file (undecodable byte at offset {exc.start})"]
-        ) from None
-    except OSError as exc:
-        raise ScenarioError.collect(where, [f"not readable ({exc.strerror or exc})"]) from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError.collect(where, [f"invalid TOML: {exc}"]) from None
-    source = file.resolve()
+    text, data = read_toml(path, "study file")
+    source = Path(path).resolve()
     return Study.from_dict(data, where=where, base_dir=source.parent, source=source, text=text)
 
 
@@ -699,7 +682,7 @@ def sweep(
         study = Study.from_dict(study_or_path)
     else:
         study = load_study(study_or_path)
-    folder = Path(out_dir) if out_dir is not None else _new_sweep_folder()
+    folder = Path(out_dir) if out_dir is not None else new_run_folder(prefix="sdc_sweep_")
     return run_study(study, folder, **kwargs)
 
 
@@ -948,18 +931,6 @@ def _locked(out: Path) -> Iterator[None]:
         yield
     finally:
         handle.close()
-
-
-def _new_sweep_folder(parent: str | os.PathLike = ".") -> Path:
-    stamp = datetime.now().strftime("%Y%m%d-%H%M%S")
-    for k in range(1000):
-        folder = Path(parent) / (f"sdc_sweep_{stamp}" + (f"-{k}" if k else ""))
-        try:
-            folder.mkdir(parents=True)
-            return folder
-        except FileExistsError:
-            continue
-    raise FileExistsError(f"cannot create a new sweep folder under {parent}")
 
 
 def _reporter(progress, total: int, out: Path):
