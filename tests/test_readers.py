@@ -514,7 +514,9 @@ def test_cli_catalog_of_a_tle_file():
     lines = result.stdout.strip().splitlines()
     assert len(lines) == 82 and lines[0].split()[:2] == ["id", "name"]
     assert lines[1].split()[0] == "733"
-    assert f"81 debris from {path}, RAANs at 2020-05-26T08:51:28.399680+00:00" in result.stderr
+    # the path may be printed resolved (../shared can be a symlink): check its parts
+    assert "81 debris from " in result.stderr and f"{path.name}, RAANs at " in result.stderr
+    assert "RAANs at 2020-05-26T08:51:28.399680+00:00" in result.stderr
 
 
 def test_cli_catalog_of_gtoc9_with_selection():
