@@ -15,6 +15,7 @@ row, the line and the field.
 from __future__ import annotations
 
 import csv
+import io
 import math
 import numbers
 import os
@@ -132,25 +133,8 @@ class Catalog:
         CatalogError
             The file is missing, unreadable, empty, or any row is invalid.
         """
-        source = os.fspath(path)
-        file = Path(source)
-        if not file.exists():
-            raise CatalogError.collect(source, [f"{source}: file not found"])
-        if file.is_dir():
-            raise CatalogError.collect(source, [f"{source}: is a directory, not a file"])
-        try:
-            with file.open(encoding="utf-8-sig", newline="") as stream:
-                header, records = _read_csv(stream, source)
-        except PermissionError:
-            raise CatalogError.collect(
-                source, [f"{source}: not readable (permission denied)"]
-            ) from None
-        except UnicodeDecodeError as exc:
-            message = f"{source}: not a UTF-8 text file (undecodable byte at offset {exc.start})"
-            raise CatalogError.collect(source, [message]) from None
-        except OSError as exc:
-            reason = exc.strerror or str(exc)
-            raise CatalogError.collect(source, [f"{source}: not readable ({reason})"]) from None
+        source, text = read_text(path)
+        header, records = _read_csv(io.StringIO(text, newline=""), source)
         return cls._from_records(header, records, source, start)
 
     @classmethod
@@ -307,6 +291,29 @@ class Catalog:
 
 
 # ---------------------------------------------------------------------- reading
+def read_text(path: str | os.PathLike) -> tuple[str, str]:
+    """``(source, text)`` of a UTF-8 file (BOM dropped), or a CatalogError saying why not."""
+    source = os.fspath(path)
+    file = Path(source)
+    if not file.exists():
+        raise CatalogError.collect(source, [f"{source}: file not found"])
+    if file.is_dir():
+        raise CatalogError.collect(source, [f"{source}: is a directory, not a file"])
+    try:
+        text = file.read_bytes().decode("utf-8-sig")
+    except PermissionError:
+        raise CatalogError.collect(
+            source, [f"{source}: not readable (permission denied)"]
+        ) from None
+    except UnicodeDecodeError as exc:
+        message = f"{source}: not a UTF-8 text file (undecodable byte at offset {exc.start})"
+        raise CatalogError.collect(source, [message]) from None
+    except OSError as exc:
+        reason = exc.strerror or str(exc)
+        raise CatalogError.collect(source, [f"{source}: not readable ({reason})"]) from None
+    return source, text
+
+
 def _read_csv(stream: Iterable[str], source: str):
     """Header and ``(first line, fields)`` records of a CSV text, blank lines skipped.
 

@@ -46,7 +46,7 @@ import pandas as pd
 from sgp4 import omm
 from sgp4.api import SGP4_ERRORS, Satrec
 
-from .catalog import R_EARTH_KM, Catalog, CatalogError
+from .catalog import R_EARTH_KM, Catalog, CatalogError, read_text
 from .orbits import MU_EARTH
 
 __all__ = [
@@ -79,29 +79,6 @@ def brouwer_a_km(satrec) -> float:
     n_rad_per_min = 1.0 / (satrec.tumin * satrec.a**1.5)
     n = n_rad_per_min / 60.0
     return (MU_EARTH / n**2) ** (1.0 / 3.0) / 1000.0
-
-
-def _read_text(path: str | os.PathLike) -> tuple[str, str]:
-    """``(source, text)`` of a UTF-8 file, or a CatalogError like ``Catalog.from_csv``'s."""
-    source = os.fspath(path)
-    file = Path(source)
-    if not file.exists():
-        raise CatalogError.collect(source, [f"{source}: file not found"])
-    if file.is_dir():
-        raise CatalogError.collect(source, [f"{source}: is a directory, not a file"])
-    try:
-        text = file.read_bytes().decode("utf-8-sig")
-    except PermissionError:
-        raise CatalogError.collect(
-            source, [f"{source}: not readable (permission denied)"]
-        ) from None
-    except UnicodeDecodeError as exc:
-        message = f"{source}: not a UTF-8 text file (undecodable byte at offset {exc.start})"
-        raise CatalogError.collect(source, [message]) from None
-    except OSError as exc:
-        reason = exc.strerror or str(exc)
-        raise CatalogError.collect(source, [f"{source}: not readable ({reason})"]) from None
-    return source, text
 
 
 def _lines(text: str) -> list[str]:
@@ -404,7 +381,7 @@ def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True) -> C
         line 2 without its line 1 (or the reverse), catalog numbers of lines 1 and 2
         that differ, an object given twice, elements sgp4 rejects.
     """
-    source, text = _read_text(path)
+    source, text = read_text(path)
     lines = _lines(text)
     if not any(line.startswith(("1 ", "2 ")) for line in lines):
         empty = "empty file: " if not text.strip() else ""
@@ -699,7 +676,7 @@ def read_omm(path: str | os.PathLike, *, start=None) -> Catalog:
         Every problem at once, naming the file and the record (``line N`` in CSV,
         ``segment k`` in XML, ``record k`` in JSON and KVN) and the field.
     """
-    source, text = _read_text(path)
+    source, text = read_text(path)
     if not text.strip():
         _fail(source, "empty file (no OMM records)")
     kind, records = _omm_records(text, source)
@@ -778,7 +755,7 @@ def read_gtoc9(path: str | os.PathLike, *, start=None) -> Catalog:
     CatalogError
         Every problem at once, naming the file, the line and the column.
     """
-    source, text = _read_text(path)
+    source, text = read_text(path)
     checks = _gtoc9_checks()
     problems: list[str] = []
     rows, where = [], []
