@@ -152,6 +152,24 @@ class Coefficients:
     depart_hi: np.ndarray
     available: np.ndarray
 
+    @classmethod
+    def fixed(cls, costs, durations, tmax_days) -> Coefficients:
+        """Edges of fixed cost [m/s] and duration [days]: no drift-radius freedom, no date term.
+
+        The model then is a plain time-limited path problem, whose optimum can be
+        enumerated by hand (model and backend tests).
+        """
+        costs = np.asarray(costs, dtype=float)
+        m = len(costs)
+        zero = np.zeros(m)
+        durations = np.broadcast_to(np.asarray(durations, dtype=float), (m,))
+        return cls(
+            a_ref=np.full(m, 7e6), c0=np.stack([costs, costs]), c1=np.zeros((2, m)),
+            t0=durations, t1=zero, t_mid=durations, t1_lo=zero, t1_hi=zero, t2=zero,
+            t_ref=zero, alpha_lo=zero, alpha_hi=zero, depart_lo=zero,
+            depart_hi=np.full(m, float(tmax_days)), available=np.ones(m, dtype=bool),
+        )  # fmt: skip
+
     def cost(self, alpha_km):
         """Linearised cost [m/s] at ``alpha_km``."""
         return np.max(self.c0 + self.c1 * alpha_km, axis=0)

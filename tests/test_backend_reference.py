@@ -33,16 +33,7 @@ REL = 1e-6
 
 def coefficients(costs, durations, tmax):
     """Hand-made coefficients: fixed cost and duration per edge, no alpha freedom."""
-    m = len(costs)
-    zero = np.zeros(m)
-    costs = np.asarray(costs, dtype=float)
-    durations = np.asarray(durations, dtype=float)
-    return Coefficients(
-        a_ref=np.full(m, 7e6), c0=np.stack([costs, costs]), c1=np.zeros((2, m)),
-        t0=durations, t1=zero, t_mid=durations, t1_lo=zero, t1_hi=zero, t2=zero, t_ref=zero,
-        alpha_lo=zero, alpha_hi=zero,
-        depart_lo=zero, depart_hi=np.full(m, tmax), available=np.ones(m, dtype=bool),
-    )  # fmt: skip
+    return Coefficients.fixed(costs, durations, tmax)
 
 
 @dataclass(frozen=True)

@@ -12,16 +12,7 @@ from sdc_cvx.sequential import read_path
 
 def coefficients(costs, durations=None, tmax=100.0):
     """Hand-made coefficients: fixed cost and duration per edge, no alpha freedom."""
-    m = len(costs)
-    zero = np.zeros(m)
-    costs = np.asarray(costs, dtype=float)
-    durations = zero if durations is None else np.asarray(durations, dtype=float)
-    return Coefficients(
-        a_ref=np.full(m, 7e6), c0=np.stack([costs, costs]), c1=np.zeros((2, m)),
-        t0=durations, t1=zero, t_mid=durations, t1_lo=zero, t1_hi=zero, t2=zero, t_ref=zero,
-        alpha_lo=zero, alpha_hi=zero,
-        depart_lo=zero, depart_hi=np.full(m, tmax), available=np.ones(m, dtype=bool),
-    )  # fmt: skip
+    return Coefficients.fixed(costs, 0.0 if durations is None else durations, tmax)
 
 
 def test_paper_dimensions_before_filtering():
