@@ -1,19 +1,24 @@
-"""Every installed MILP backend on the paper case and synthetic SSO catalogs, end to end.
+"""Every installed MILP backend on the paper case and GTOC9-derived catalogs, end to end.
 
 Usage: python benchmarks/compare_backends.py [--backends HIGHS SCIP ...] [--sizes 20 40]
-       [--large] [--time-limit 30] [--timeout 600] [--out DIR] [--no-modelling]
+       [--large] [--source gtoc9|synthetic] [--time-limit 30] [--timeout 600] [--out DIR]
+       [--no-modelling]
 
 Each (backend, case) runs in its own subprocess, ``python -m sdc_cvx run --backend NAME
 --quiet --json --time-limit T [--catalog FILE]``, so a backend that crashes or hangs
-cannot take the others with it and every run pays the same start-up.  Synthetic cases are
-``sdc_cvx.synthetic.sso_catalog(N, seed)`` written to a temporary CSV (20 and 40 debris;
-``--large`` adds 80 and 123).  Writes ``compare_backends.csv`` (backend, case, N, seconds
-end to end, total nodes, iterations, final dV, path, status, ...) and
-``compare_backends.png`` to ``--out``, and prints a table with whether every backend
-found the same path and dV (within 0.1 %) as the reference (HiGHS when it succeeded).
+cannot take the others with it and every run pays the same start-up.  The catalogs of
+N debris are the first N of a seeded permutation of the GTOC9 set
+(``../shared/data/gtoc9/debris_data.txt``, RAANs at its latest epoch), so each size
+contains the smaller ones; ``--source synthetic`` uses
+``sdc_cvx.synthetic.sso_catalog(N, seed)`` instead.  Each is written to a temporary CSV
+(20 and 40 debris; ``--large`` adds 80 and 123, the whole GTOC9 set).  Writes
+``compare_backends.csv`` (backend, case, N, seconds end to end, total nodes, iterations,
+final dV, path, status, ...) and ``compare_backends.png`` to ``--out``, and prints a
+table with whether every backend found the same path and dV (within 0.1 %) as the
+reference (HiGHS when it succeeded).
 
 Then the modelling layer's cost: the final MILP of the HiGHS run (paper case and the
-first synthetic size), solved by HiGHS through CVXPY (``solve_milp``: a re-solve with
+first catalog size), solved by HiGHS through CVXPY (``solve_milp``: a re-solve with
 the canonicalisation cached, as the driver does; and a cold first solve of a fresh
 Problem) versus by ``highspy`` directly on the same model exported to MPS
 (``write_model_file``; ``Highs.readModel``; ``run``), printed as ratios.  Times vary on
@@ -33,12 +38,16 @@ import time
 from pathlib import Path
 
 import cvxpy as cp
+import numpy as np
 
 from sdc_cvx import backends, sequential
 from sdc_cvx.backends import SolverOptions, installed_backends, solve_milp
 from sdc_cvx.catalog import Catalog
 from sdc_cvx.mission import Mission
+from sdc_cvx.readers import read_catalog
 from sdc_cvx.synthetic import sso_catalog
+
+GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
 
 DV_AGREEMENT = 1e-3  # relative
 COLUMNS = ["backend", "case", "N", "seconds", "nodes", "iterations", "dv_mps", "path", "status",
@@ -52,13 +61,23 @@ def write_catalog(catalog: Catalog, path: Path) -> Path:
     return path
 
 
-def make_cases(sizes, seed, folder: Path):
+def gtoc9_subset(n: int, seed: int) -> Catalog:
+    """The first ``n`` debris of a seeded permutation of the GTOC9 catalog."""
+    catalog = read_catalog(GTOC9, format="gtoc9")
+    order = np.random.default_rng(seed).permutation(len(catalog))[:n]
+    return catalog.subset([catalog.ids[k] for k in order]) if n < len(catalog) else catalog
+
+
+def make_cases(sizes, seed, folder: Path, source="gtoc9"):
     """(case name, N, catalog CSV or None for the paper case, Catalog)."""
     paper = Catalog.paper_case()
     cases = [("paper", len(paper), None, paper)]
     for n in sizes:
-        catalog = sso_catalog(n, seed=seed)
-        cases.append((f"sso{n}", n, write_catalog(catalog, folder / f"sso{n}.csv"), catalog))
+        if source == "gtoc9":
+            catalog, name = gtoc9_subset(n, seed), f"gtoc9_{n}"
+        else:
+            catalog, name = sso_catalog(n, seed=seed), f"sso{n}"
+        cases.append((name, n, write_catalog(catalog, folder / f"{name}.csv"), catalog))
     return cases
 
 
@@ -291,7 +310,9 @@ def main(argv=None):
     parser.add_argument("--backends", nargs="*", default=None, help="[every installed one]")
     parser.add_argument("--sizes", type=int, nargs="*", default=[20, 40])
     parser.add_argument("--large", action="store_true", help="also N = 80 and 123")
-    parser.add_argument("--seed", type=int, default=0, help="of the synthetic catalogs")
+    parser.add_argument("--source", choices=["gtoc9", "synthetic"], default="gtoc9",
+                        help="GTOC9 subsets or synthetic SSO catalogs")  # fmt: skip
+    parser.add_argument("--seed", type=int, default=0, help="of the subsets / synthetic sets")
     parser.add_argument("--time-limit", type=float, default=30.0, help="per MILP solve [s]")
     parser.add_argument("--timeout", type=float, default=600.0, help="per subprocess [s]")
     parser.add_argument("--out", type=Path, default=Path("runs/compare_backends"))
@@ -308,7 +329,7 @@ def main(argv=None):
     rows = []
     with tempfile.TemporaryDirectory(prefix="compare_backends_") as tmp:
         folder = Path(tmp)
-        cases = make_cases(sizes, args.seed, folder)
+        cases = make_cases(sizes, args.seed, folder, args.source)
         for case, n, csv_path, _ in cases:
             for name in names:
                 row = run_one(name, case, n, csv_path, args.time_limit, args.timeout, folder)
