@@ -10,6 +10,7 @@ from __future__ import annotations
 import importlib.metadata
 import importlib.util
 import sys
+from functools import partial
 from pathlib import Path
 
 import click
@@ -21,8 +22,8 @@ from .catalog import Catalog, CatalogError
 from .edges import preoptimize
 from .mission import MissionError
 from .output import new_run_folder, write_run
-from .scenario import MILP_BACKENDS, Scenario, ScenarioError, apply_overrides
-from .selection import DEFAULT_MAX_ECCENTRICITY, select
+from .scenario import MILP_BACKENDS, Scenario, ScenarioError, Selection, apply_overrides
+from .selection import DEFAULT_MAX_ECCENTRICITY
 from .selection import summary as selection_summary
 from .sequential import MissionInfeasible, SolverFailure, solve
 
@@ -89,7 +90,14 @@ def scenario_argument(command):
                           type=click.Path(dir_okay=False))(command)  # fmt: skip
 
 
+def start_option(command):
+    return click.option("--start", default=None, metavar="DATE",
+                        help="Mission start date the RAANs and day 0 refer to, ISO-8601 (UTC "
+                        "when naive) [scenario's, else the latest epoch].")(command)  # fmt: skip
+
+
 def catalog_options(command):
+    command = start_option(command)
     command = click.option(
         "--format",
         "catalog_format",
@@ -107,7 +115,7 @@ def catalog_options(command):
 
 
 def selection_options(command):
-    """Candidate filters (see :func:`sdc_cvx.selection.select`)."""
+    """Candidate filters (see :func:`sdc_cvx.selection.select`); they override ``[selection]``."""
     options = [
         click.option("--altitude-km", nargs=2, type=float, default=None,
                      metavar="LOW HIGH", help="Keep altitudes a - R_T in [LOW, HIGH] km."),
@@ -126,25 +134,27 @@ def selection_options(command):
     return command
 
 
-def select_candidates(catalog: Catalog, filters: dict, echo) -> tuple[Catalog, pd.DataFrame]:
-    """The candidates kept by the ``filters`` options; exit 2 if none or a bad filter.
+def selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids) -> dict:
+    """The ``selection.*`` overrides of the filter options (None: not given)."""
+    return {"selection.altitude_km": altitude_km, "selection.inclination_deg": inclination_deg,
+            "selection.max_eccentricity": max_eccentricity, "selection.ids": tuple(ids) or None,
+            "selection.exclude_ids": tuple(exclude_ids) or None}  # fmt: skip
 
-    ``echo`` gets the "kept K of N candidates (...)" line when a filter is given or a
+
+def select_candidates(catalog: Catalog, selection: Selection, echo) -> tuple[Catalog, pd.DataFrame]:
+    """The candidates kept by the ``selection``; exit 2 if none or a bad pattern.
+
+    ``echo`` gets the "kept K of N candidates (...)" line when a filter is set or a
     debris is dropped (near-polar orbits and e > 0.05 are always dropped).
     """
     try:
-        kept, report = select(
-            catalog, altitude_km=filters["altitude_km"],
-            inclination_deg=filters["inclination_deg"],
-            eccentricity_max=filters["max_eccentricity"], ids=filters["ids"] or None,
-            exclude_ids=filters["exclude_ids"] or None,
-        )  # fmt: skip
+        kept, report = selection.apply(catalog)
     except ValueError as err:
         fail(f"candidate selection: {err}")
     line = selection_summary(kept, report)
     if len(kept) == 0:
         fail(f"no candidate left in {catalog.source}: {line}")
-    if len(report) or any(value for value in filters.values()):
+    if len(report) or selection != Selection():
         echo(line)
     return kept, report
 
@@ -169,15 +179,15 @@ def main():
     help="Reference departure date of every edge [days after the start].",
 )
 @click.option("--all", "show_all", is_flag=True, help="Also list the dropped edges and why.")
-def edges(scenario_file, catalog_path, catalog_format, preopt_days, dv_max_mps, departure_day,
-          show_all):  # fmt: skip
+def edges(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_max_mps,
+          departure_day, show_all):  # fmt: skip
     """Print the pre-optimised edge table (paper Part IV-B) as CSV on stdout.
 
     SCENARIO.toml (optional) gives the catalog and mission; the options override it.
     """
     scenario = build_scenario(scenario_file, catalog_path=catalog_path,
-                              catalog_format=catalog_format, preopt_days=preopt_days,
-                              dv_max_mps=dv_max_mps)  # fmt: skip
+                              catalog_format=catalog_format, catalog_start=start,
+                              preopt_days=preopt_days, dv_max_mps=dv_max_mps)  # fmt: skip
     catalog = read_catalog(scenario)
     table = preoptimize(catalog, scenario.mission, departure_day=departure_day)
     frame = table.frame if show_all else table.kept
@@ -247,23 +257,24 @@ def print_iteration(record):
     hidden=True,
     help="Force the per-iteration lines on or off [on when stderr is a terminal].",
 )
-def run(scenario_file, catalog_path, catalog_format, altitude_km, inclination_deg,
+def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclination_deg,
         max_eccentricity, ids, exclude_ids, n, tmax_days, deorbit_days, preopt_days, dv_max_mps,
         min_transfer_days, backend, time_limit_s, mip_gap, threads, fallback, out_dir, quiet,
         json_out, svg, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
-    SCENARIO.toml (optional; default the paper's case) gives the catalog, mission and
-    solver; the options override it ([defaults] apply when neither sets a value).
-    The run folder also gets scenario.toml, the scenario as used.  Exit codes: 2
-    invalid input (nothing written), 3 infeasible mission, 4 solver failure.
+    SCENARIO.toml (optional; default the paper's case) gives the catalog, mission,
+    solver and candidate filters; the options override it ([defaults] apply when neither
+    sets a value).  The run folder also gets scenario.toml, the scenario as used.  Exit
+    codes: 2 invalid input (nothing written), 3 infeasible mission, 4 solver failure.
     """
     scenario = build_scenario(
-        scenario_file, catalog_path=catalog_path, catalog_format=catalog_format, n=n,
-        tmax_days=tmax_days, deorbit_days=deorbit_days, preopt_days=preopt_days,
-        dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days, backend=backend,
-        time_limit_s=time_limit_s, mip_gap=mip_gap, threads=threads,
+        scenario_file, catalog_path=catalog_path, catalog_format=catalog_format,
+        catalog_start=start, n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
+        preopt_days=preopt_days, dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days,
+        backend=backend, time_limit_s=time_limit_s, mip_gap=mip_gap, threads=threads,
         fallback=tuple(fallback) or None,
+        **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids),
     )  # fmt: skip
     catalog = read_catalog(scenario)
     mission, solver = scenario.mission, scenario.solver
@@ -272,9 +283,7 @@ def run(scenario_file, catalog_path, catalog_format, altitude_km, inclination_de
         if not quiet:
             click.echo(message, err=True)
 
-    filters = dict(altitude_km=altitude_km, inclination_deg=inclination_deg,
-                   max_eccentricity=max_eccentricity, ids=ids, exclude_ids=exclude_ids)  # fmt: skip
-    catalog, _ = select_candidates(catalog, filters, info)
+    catalog, _ = select_candidates(catalog, scenario.selection, info)
     try:
         mission.check_candidates(catalog.ids)
     except MissionError as err:
@@ -345,19 +354,20 @@ def catalog_table(catalog: Catalog) -> str:
     default=None,
     help="csv, tle, omm or gtoc9 [from the extension].",
 )
+@start_option
 @selection_options
-def catalog_command(file, catalog_format, altitude_km, inclination_deg, max_eccentricity, ids,
-                    exclude_ids):  # fmt: skip
+def catalog_command(file, catalog_format, start, altitude_km, inclination_deg, max_eccentricity,
+                    ids, exclude_ids):  # fmt: skip
     """Validate a debris catalog and print it as a table (default: the paper's Table 5).
 
     The candidate filters drop debris as ``run`` does; the dropped ones and why go to
     stderr.
     """
-    scenario = build_scenario(None, catalog_path=file, catalog_format=catalog_format)
+    filters = selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids)
+    scenario = build_scenario(None, catalog_path=file, catalog_format=catalog_format,
+                              catalog_start=start, **filters)  # fmt: skip
     catalog = read_catalog(scenario)
-    filters = dict(altitude_km=altitude_km, inclination_deg=inclination_deg,
-                   max_eccentricity=max_eccentricity, ids=ids, exclude_ids=exclude_ids)  # fmt: skip
-    catalog, report = select_candidates(catalog, filters, lambda line: click.echo(line, err=True))
+    catalog, report = select_candidates(catalog, scenario.selection, partial(click.echo, err=True))
     # the orbits dropped, and why (not those the --ids / --exclude-ids patterns leave out)
     orbits = report[~report["checks"].isin(["ids", "excluded", "ids,excluded"])]
     for row in orbits.head(MAX_DROPPED_SHOWN).itertuples():

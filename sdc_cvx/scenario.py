@@ -1,10 +1,12 @@
-"""Scenario files: a catalog, the mission parameters and the solver options in one TOML file.
+"""Scenario files: catalog, mission parameters, solver options, candidate filters in one TOML.
 
-A scenario file has three tables, each optional::
+A scenario file has four tables, each optional::
 
     [catalog]
     path = "debris.csv"        # relative to the scenario file
     format = "csv"             # csv | tle | omm | gtoc9; default from the extension
+    start = 2020-05-24T00:00:00Z  # the date the RAANs and day 0 refer to (UTC when
+                               # naive; an ISO string is fine); default the latest epoch
     [mission]                  # exactly the fields of Mission
     n = 5
     tmax_days = 365.25
@@ -16,16 +18,26 @@ A scenario file has three tables, each optional::
     backend = "HIGHS"
     time_limit_s = 60.0
     mip_gap = 1e-6
+    [selection]                # candidate filters (sdc_cvx.selection.select); no key: none
+    altitude_km = [600.0, 900.0]
+    inclination_deg = [96.0, 100.0]
+    max_eccentricity = 0.05    # the default; near-polar orbits are always dropped
+    ids = ["43*"]              # shell-style patterns
+    names = ["cosmos 2251*"]   # case-insensitive
+    exclude_ids = ["4350?"]
 
 A missing ``[catalog]`` table, or one without ``path``, means the paper's Table 5 bundled
-with the package.  Missing keys keep the defaults of :class:`Mission` and
-:class:`SolverOptions` (the paper's case, HiGHS).
+with the package (which has no epochs: ``catalog.start`` needs a path).  Missing keys keep
+the defaults of :class:`Mission` and :class:`SolverOptions` (the paper's case, HiGHS) and
+of :class:`Selection` (no filter).
 
 Every problem is reported in a :class:`ScenarioError` with a one-line message that names
 the file, the key as a dotted name (``mission.tmax_days``) and what is allowed.  Values
 are checked for type first (an integer is fine where a number is expected, a boolean or
 a string is not), then by the validation of :class:`Mission` and :class:`SolverOptions`
-themselves, whose messages are re-labelled with the dotted key.
+themselves, whose messages are re-labelled with the dotted key.  The candidate filters
+are applied to the catalog read (:meth:`Selection.apply`): a pattern that matches no
+debris is only found then.
 """
 
 from __future__ import annotations
@@ -39,6 +51,7 @@ import tomllib
 import typing
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from datetime import UTC, date, datetime, time
 from pathlib import Path
 
 import tomli_w
@@ -47,6 +60,7 @@ from .backends import SolverOptions
 from .catalog import Catalog
 from .mission import Mission, MissionError
 from .readers import read_gtoc9, read_omm, read_tle
+from .selection import DEFAULT_MAX_ECCENTRICITY, select
 
 __all__ = [
     "CATALOG_FORMATS",
@@ -55,19 +69,20 @@ __all__ = [
     "READABLE_FORMATS",
     "Scenario",
     "ScenarioError",
+    "Selection",
     "load",
 ]
 
 CATALOG_FORMATS = ("csv", "tle", "omm", "gtoc9")
 """Catalog formats a scenario may name."""
 
-_READERS: dict[str, Callable[[Path], Catalog]] = {
+_READERS: dict[str, Callable[..., Catalog]] = {
     "csv": Catalog.from_csv,
     "tle": read_tle,
     "omm": read_omm,
     "gtoc9": read_gtoc9,
 }
-"""Reader of each format (see :mod:`sdc_cvx.readers`)."""
+"""Reader of each format, ``reader(path, start=None)`` (see :mod:`sdc_cvx.readers`)."""
 READABLE_FORMATS = tuple(_READERS)
 """Formats that can be read today (a format without a reader would be refused clearly)."""
 
@@ -100,16 +115,87 @@ MILP_BACKENDS = (
 
 PAPER_CASE = "the paper's Table 5 bundled with sdc_cvx"
 
-_TABLES = ("catalog", "mission", "solver")
-_CATALOG_KEYS = ("path", "format")
+
+@dataclass(frozen=True)
+class Selection:
+    """Candidate filters of a scenario (its ``[selection]`` table), validated.
+
+    The arguments of :func:`sdc_cvx.selection.select`; ``Selection()`` filters nothing
+    (eccentric orbits, ``e > 0.05``, and near-polar ones are dropped all the same).
+
+    Attributes
+    ----------
+    altitude_km, inclination_deg : (low, high) or None
+        Keep the debris with the altitude [km] / inclination [deg] in [low, high].
+    max_eccentricity : float or None
+        Drop ``e > max_eccentricity``; None: 0.05, ``inf``: keep every eccentricity.
+    ids, names, exclude_ids : tuple of str
+        Shell-style patterns: keep the ids / names (case-insensitive) matching one
+        (none given: every debris), drop the ids matching one.
+    """
+
+    altitude_km: tuple[float, float] | None = None
+    inclination_deg: tuple[float, float] | None = None
+    max_eccentricity: float | None = None
+    ids: tuple[str, ...] = ()
+    names: tuple[str, ...] = ()
+    exclude_ids: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        problems = []
+        for name in ("altitude_km", "inclination_deg"):
+            bounds = getattr(self, name)
+            if bounds is not None and not bounds[0] <= bounds[1]:
+                problems.append(f"{name} must be [low, high] with low <= high, got {list(bounds)}")
+        if self.max_eccentricity is not None and not self.max_eccentricity >= 0.0:
+            problems.append(f"max_eccentricity must be >= 0, got {self.max_eccentricity!r}")
+        for name in ("ids", "names", "exclude_ids"):
+            if any(not pattern.strip() for pattern in getattr(self, name)):
+                problems.append(f"{name} must not hold an empty pattern, got {getattr(self, name)}")
+        if problems:
+            raise ValueError("; ".join(problems))
+
+    def to_dict(self) -> dict:
+        """The filters that are set (lists for arrays); empty for ``Selection()``."""
+        return {key: list(value) if isinstance(value, tuple) else value
+                for key, value in dataclasses.asdict(self).items()
+                if value is not None and value != ()}  # fmt: skip
+
+    def apply(self, catalog: Catalog):
+        """``(kept, report)`` of :func:`sdc_cvx.selection.select` with these filters.
+
+        Raises
+        ------
+        ValueError
+            A pattern of ``ids`` or ``names`` matches no debris, or ``names`` on a
+            catalog without names.
+        """
+        return select(catalog, altitude_km=self.altitude_km, inclination_deg=self.inclination_deg,
+                      eccentricity_max=self.max_eccentricity, ids=self.ids or None,
+                      names=self.names or None, exclude_ids=self.exclude_ids or None)  # fmt: skip
+
+
+class _Limit(float):
+    """Type of a number that may be ``inf`` (``selection.max_eccentricity``: no limit)."""
+
+
+_TABLES = ("catalog", "mission", "solver", "selection")
+_CATALOG_KEYS = ("path", "format", "start")
 _MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
-_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS}
+_SELECTION_KEYS = tuple(f.name for f in dataclasses.fields(Selection))
+_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS,
+         "selection": _SELECTION_KEYS}  # fmt: skip
 _TYPES = {
-    "catalog": {"path": str, "format": str},
+    "catalog": {"path": str, "format": str, "start": object},  # start: checked by _start
     "mission": typing.get_type_hints(Mission),
     "solver": typing.get_type_hints(SolverOptions),
+    "selection": typing.get_type_hints(Selection) | {"max_eccentricity": _Limit | None},
 }
+_UNSET = {"catalog": "the latest epoch in the catalog", "mission": "none",
+          "solver": "no limit / backend default",
+          "selection": f"no filter; max_eccentricity {DEFAULT_MAX_ECCENTRICITY:g}"}  # fmt: skip
+"""What a key left out of each table means (comments of :meth:`Scenario.to_toml`)."""
 
 
 class ScenarioError(ValueError):
@@ -133,7 +219,7 @@ class ScenarioError(ValueError):
 
 @dataclass(frozen=True)
 class Scenario:
-    """What to solve and how: catalog, mission and solver options.
+    """What to solve and how: catalog, mission, solver options and candidate filters.
 
     Build it with :meth:`load` (a TOML file) and change it with :meth:`with_overrides`;
     both validate every value.  ``Scenario()`` is the paper's case with HiGHS.
@@ -146,6 +232,11 @@ class Scenario:
         One of :data:`CATALOG_FORMATS` (``"csv"`` for the paper's table).
     mission : Mission
     solver : SolverOptions
+    catalog_start : datetime or None
+        Mission start date (UTC) the RAANs and day 0 refer to; None: the latest epoch
+        of the catalog (or none, for a catalog without epochs).
+    selection : Selection
+        Candidate filters; the CLI ``run`` applies them to the catalog.
     source : Path or None
         The scenario file read, if any.  Not compared: two scenarios with the same
         content are equal wherever they were read from.
@@ -155,6 +246,8 @@ class Scenario:
     catalog_format: str = "csv"
     mission: Mission = field(default_factory=Mission)
     solver: SolverOptions = field(default_factory=SolverOptions)
+    catalog_start: datetime | None = None
+    selection: Selection = field(default_factory=Selection)
     source: Path | None = field(default=None, compare=False)
 
     # ------------------------------------------------------------------ reading
@@ -177,9 +270,10 @@ class Scenario:
         """A copy with some values changed, validated like a file.
 
         Keys are dotted names (``**{"mission.n": 4}``) or plain field names: the
-        fields of :class:`Mission` and :class:`SolverOptions` (``n=4``,
-        ``backend="SCIP"``) and ``catalog_path`` / ``catalog_format`` (or ``catalog``
-        / ``format``).  None means "not given" and changes nothing.  A relative
+        fields of :class:`Mission`, :class:`SolverOptions` and :class:`Selection`
+        (``n=4``, ``backend="SCIP"``, ``altitude_km=(600, 900)``) and
+        ``catalog_path`` / ``catalog_format`` / ``catalog_start`` (or ``catalog`` /
+        ``format`` / ``start``).  None means "not given" and changes nothing.  A relative
         catalog path is taken from the current directory; changing the path without
         the format chooses the format again from the extension.
 
@@ -192,6 +286,10 @@ class Scenario:
 
     def load_catalog(self) -> Catalog:
         """The debris catalog (the paper's Table 5 when ``catalog_path`` is None).
+
+        Its RAANs are at ``catalog_start`` (default: the latest epoch); a catalog without
+        epochs takes them as they are, at that date.  The candidate filters are not
+        applied: see :meth:`Selection.apply`.
 
         Raises
         ------
@@ -207,12 +305,17 @@ class Scenario:
             raise ScenarioError.collect(
                 self._where(), [_unsupported(self.catalog_format, self.catalog_path, chosen=False)]
             )
-        return reader(self.catalog_path)
+        return reader(self.catalog_path, start=self.catalog_start)
 
     # ------------------------------------------------------------------ writing
     def to_dict(self) -> dict:
-        """The scenario as nested dicts (``catalog``, ``mission``, ``solver``); None if unset."""
-        return {
+        """The scenario as nested dicts (``catalog``, ``mission``, ``solver``); None if unset.
+
+        ``catalog.start`` (an ISO-8601 string) and the ``selection`` table (the filters
+        set) are there only when set: the content of a scenario without them, and so a
+        sweep's ``scenario_sha``, is what it was before they existed.
+        """
+        data = {
             "catalog": {
                 "path": None if self.catalog_path is None else str(self.catalog_path),
                 "format": self.catalog_format,
@@ -220,16 +323,24 @@ class Scenario:
             "mission": self.mission.to_dict(),
             "solver": dataclasses.asdict(self.solver),
         }
+        if self.catalog_start is not None:
+            data["catalog"]["start"] = self.catalog_start.isoformat()
+        if self.selection.to_dict():
+            data["selection"] = self.selection.to_dict()
+        return data
 
     def to_toml(self) -> str:
         """The scenario as used, every default filled in and the catalog path absolute.
 
-        ``Scenario.load`` of this text gives back an equal scenario.  Solver options
-        that are not set (None: no time limit, backend's threads and seed) are left
-        out, which means the same on reading; a ``mip_gap`` of None (the backend's own
-        gap) cannot be written in TOML and reads back as the default 1e-6.
+        ``Scenario.load`` of this text gives back an equal scenario.  Values that are
+        not set (solver options, None: no time limit, backend's threads and seed;
+        ``catalog.start``; candidate filters) are left out and named in a comment,
+        which means the same on reading; a ``mip_gap`` of None (the backend's own gap)
+        cannot be written in TOML and reads back as the default 1e-6.
         """
         data = self.to_dict()
+        data["catalog"]["start"] = self.catalog_start  # a TOML datetime, or not set
+        data["selection"] = {key: None for key in _SELECTION_KEYS} | self.selection.to_dict()
         lines = ["# sdc_cvx scenario, as used: every default filled in."]
         if self.source is not None:
             lines.append("# Read from " + os.fspath(self.source).replace("\n", " "))
@@ -242,8 +353,7 @@ class Scenario:
             lines += [f"{key} = {_toml_value(value)}" for key, value in values.items()
                       if value is not None]  # fmt: skip
             if unset:
-                meaning = "no limit / backend default" if table == "solver" else "none"
-                lines.append(f"# not set ({meaning}): {', '.join(unset)}")
+                lines.append(f"# not set ({_UNSET[table]}): {', '.join(unset)}")
         return "\n".join(lines) + "\n"
 
     def _where(self) -> str:
@@ -300,7 +410,7 @@ def apply_overrides(scenario: Scenario, changes: Mapping, origin: str = "overrid
                 value = os.fspath(cwd / Path(value).expanduser())
             if not format_given:
                 data["catalog"].pop("format", None)  # choose it again from the extension
-        data[table][key] = value
+        data.setdefault(table, {})[key] = value
     if problems:
         raise ScenarioError.collect(origin, problems)
     if data["catalog"]["path"] is None:
@@ -325,18 +435,22 @@ def _build(data: Mapping, where: str, *, base: Path, source: Path | None) -> Sce
                 hint = f" (did you mean {owner[0]}.{name}?)" if owner else ""
                 problems.append(
                     f"key {name!r} outside a table{hint}; "
-                    f"keys go in [catalog], [mission] or [solver]"
+                    f"keys go in [catalog], [mission], [solver] or [selection]"
                 )
         elif not isinstance(table, Mapping):
             problems.append(f"{name} must be a table ([{name}]), got {_kind(table)}")
         else:
             tables[name] = _checked_table(name, table, problems)
-    catalog_path, catalog_format = _catalog(tables.get("catalog", {}), base, problems)
+    catalog = tables.get("catalog", {})
+    catalog_path, catalog_format = _catalog(catalog, base, problems)
+    start = _start(catalog.get("start"), catalog_path, problems)
     mission = _make(Mission, "mission", tables.get("mission", {}), problems)
     solver = _make(SolverOptions, "solver", tables.get("solver", {}), problems)
+    selection = _make(Selection, "selection", tables.get("selection", {}), problems)
     if problems:
         raise ScenarioError.collect(where, problems)
-    return Scenario(catalog_path, catalog_format, mission, solver, source)
+    return Scenario(catalog_path, catalog_format, mission, solver, catalog_start=start,
+                    selection=selection, source=source)  # fmt: skip
 
 
 def _checked_table(table: str, values: Mapping, problems: list[str]) -> dict:
@@ -376,6 +490,9 @@ def _typed(value, kind):
         if ok and math.isfinite(value):
             return float(value), None
         return None, "a finite number"
+    if kind is _Limit:
+        ok = isinstance(value, int | float) and not isinstance(value, bool)
+        return (float(value), None) if ok and not math.isnan(value) else (None, "a number or inf")
     if kind is str:
         return (value, None) if isinstance(value, str) else (None, "a string")
     if typing.get_origin(kind) is tuple:
@@ -467,6 +584,33 @@ def _catalog(values: dict, base: Path, problems: list[str]) -> tuple[Path | None
     return path, fmt
 
 
+def _start(value, catalog_path: Path | None, problems: list[str]) -> datetime | None:
+    """``catalog.start`` as a UTC datetime (naive: UTC; a date: its midnight), or None."""
+    if value is None:
+        return None
+    stamp = value
+    if isinstance(value, str):
+        try:
+            stamp = datetime.fromisoformat(value.strip())
+        except ValueError:
+            stamp = None
+    elif isinstance(value, date) and not isinstance(value, datetime):
+        stamp = datetime.combine(value, time())
+    if not isinstance(stamp, datetime):
+        problems.append(
+            f"catalog.start must be a date and time, a TOML datetime or an ISO-8601 string "
+            f"such as 2020-05-24T12:00:00Z; got {_show(value)}"
+        )
+        return None
+    if catalog_path is None:
+        problems.append(
+            f"catalog.start needs catalog.path: {PAPER_CASE} has no epochs, its RAANs are "
+            f"at the mission start whatever its date"
+        )
+    stamp = datetime.combine(stamp.date(), stamp.timetz())  # a plain datetime, not pandas'
+    return stamp.replace(tzinfo=UTC) if stamp.tzinfo is None else stamp.astimezone(UTC)
+
+
 def _unsupported(fmt: str, path: Path, chosen: bool) -> str:
     how = f" (chosen from the extension {path.suffix!r} of catalog.path)" if chosen else ""
     return (
@@ -486,13 +630,14 @@ def _toml_value(value) -> str:
 def _dotted_name(name: str) -> str | None:
     """Dotted key of an override name, or None if unknown."""
     aliases = {"catalog": "catalog.path", "catalog_path": "catalog.path",
-               "format": "catalog.format", "catalog_format": "catalog.format"}  # fmt: skip
+               "format": "catalog.format", "catalog_format": "catalog.format",
+               "start": "catalog.start", "catalog_start": "catalog.start"}  # fmt: skip
     if name in aliases:
         return aliases[name]
     if "." in name:
         table, _, key = name.partition(".")
         return name if table in _KEYS and key in _KEYS[table] else None
-    for table in ("mission", "solver"):
+    for table in ("mission", "solver", "selection"):
         if name in _KEYS[table]:
             return f"{table}.{name}"
     return None
@@ -500,8 +645,8 @@ def _dotted_name(name: str) -> str | None:
 
 def _allowed_overrides() -> str:
     return (
-        "allowed: catalog_path, catalog_format, a field of Mission or SolverOptions, "
-        "or a dotted key such as mission.n"
+        "allowed: catalog_path, catalog_format, catalog_start, a field of Mission, "
+        "SolverOptions or Selection, or a dotted key such as mission.n"
     )
 
 

@@ -168,7 +168,14 @@ class Solution:
         return frame
 
     def to_dict(self) -> dict:
-        """JSON-ready dict with the documented keys of ``solution.json``."""
+        """JSON-ready dict with the documented keys of ``solution.json``.
+
+        ``start`` is the date the RAANs and day 0 refer to (the catalog's start, an
+        ISO-8601 UTC string such as ``"2020-05-24T00:00:00+00:00"``); the legs'
+        ``departure_day`` counts from it.  It is None (``null``) for a catalog without
+        epochs, such as the paper's Table 5, or a solution without its catalog.
+        """
+        start = None if self.catalog is None else self.catalog.start
         return {
             "path": list(self.path),
             "total_dv_mps": self.total_dv_mps,
@@ -178,6 +185,7 @@ class Solution:
             "legs": [leg.to_dict() for leg in self.legs],
             "initial_legs": [leg.to_dict() for leg in self.initial_legs],
             "iterations": [record.to_dict() for record in self.iterations],
+            "start": None if start is None else start.isoformat(),
             "mission": self.mission.to_dict(),
             "operations": self.operations,
             "model_size": self.model_size,

@@ -2,6 +2,7 @@
 
 import importlib.metadata
 import json
+from datetime import UTC, datetime
 from pathlib import Path
 
 import cvxpy as cp
@@ -11,7 +12,11 @@ from click.testing import CliRunner
 
 from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.cli import main
-from sdc_cvx.scenario import load
+from sdc_cvx.readers import read_gtoc9
+from sdc_cvx.scenario import Selection, load
+
+PAPER_CSV = Path(__file__).resolve().parents[1] / "sdc_cvx" / "data" / "paper_table5.csv"
+GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
 
 
 def test_run_paper_case_writes_the_run_folder(tmp_path):
@@ -20,6 +25,7 @@ def test_run_paper_case_writes_the_run_folder(tmp_path):
     assert "5 -> 8 -> 2 -> 6 -> 10" in result.output
     data = json.loads((tmp_path / "out" / "solution.json").read_text())
     assert data["path"] == ["5", "8", "2", "6", "10"] and data["total_dv_mps"] <= 500.7
+    assert data["start"] is None  # Table 5 has no epochs
     legs = pd.read_csv(tmp_path / "out" / "legs.csv")
     assert len(legs) == 4 and abs(legs["dv_mps"].sum() - data["total_dv_mps"]) < 1e-6
     assert len(pd.read_csv(tmp_path / "out" / "iterations.csv")) == len(data["iterations"])
@@ -122,8 +128,14 @@ def test_run_invalid_scenario_exits_2_and_writes_nothing(tmp_path, text, parts):
         (["--catalog", "gone.csv"], ["catalog.path: file not found", "gone.csv"]),
         (["--catalog", "scenario.toml", "--format", "xls"], ["catalog.format must be one of"]),
         (["missing.toml"], ["missing.toml: file not found"]),
+        (["--start", "2020-06-01"], ["command line: catalog.start needs catalog.path"]),
+        (["--catalog", "scenario.toml", "--format", "csv", "--start", "soon"],
+         ["catalog.start must be a date and time", "'soon'"]),
+        (["--altitude-km", "900", "600"],
+         ["command line: selection.altitude_km must be [low, high] with low <= high"]),
+        (["--max-eccentricity", "-1"], ["selection.max_eccentricity must be >= 0"]),
     ],
-)
+)  # fmt: skip
 def test_run_invalid_flags_exit_2_and_write_nothing(tmp_path, args, parts):
     (tmp_path / "scenario.toml").write_text("")
     result = run_in(tmp_path, *args)
@@ -281,3 +293,77 @@ def test_run_falls_back_from_an_unavailable_backend(tmp_path):
     data = json.loads((tmp_path / "solution.json").read_text())
     assert data["backend"] == "HIGHS"
     assert any("MOSEK failed" in note and "used HIGHS" in note for note in data["notes"])
+
+
+# ---------------------------------------------------------------------- start and selection
+def test_run_selection_is_written_to_the_run_folder_and_reproduces_the_run(tmp_path):
+    (tmp_path / "scenario.toml").write_text('[mission]\nn = 3\n[selection]\nexclude_ids = ["7"]\n')
+    out = tmp_path / "out"
+    result = run_in(tmp_path, "scenario.toml", "--altitude-km", "670", "880", "--out", out)
+    assert result.exit_code == 0, result.output
+    assert "kept 8 of 11 candidates (dropped: 1 excluded, 2 altitude)" in result.stderr
+    used = load(out / "scenario.toml")  # the file's filter and the flag's
+    assert used.selection == Selection(altitude_km=(670.0, 880.0), exclude_ids=("7",))
+    kept, _ = used.selection.apply(Catalog.paper_case())
+    first = json.loads((out / "solution.json").read_text())
+    assert set(first["path"]) <= set(kept.ids) == {"2", "3", "4", "5", "6", "8", "9", "10"}
+    result = run_in(tmp_path, out / "scenario.toml", "--out", tmp_path / "again")
+    assert result.exit_code == 0, result.output
+    assert "kept 8 of 11 candidates (dropped: 1 excluded, 2 altitude)" in result.stderr
+    again = json.loads((tmp_path / "again" / "solution.json").read_text())
+    assert again["path"] == first["path"] and again["total_dv_mps"] == first["total_dv_mps"]
+
+
+def test_run_flag_overrides_the_scenario_selection(tmp_path):
+    (tmp_path / "scenario.toml").write_text("[selection]\naltitude_km = [600, 900]\n")
+    result = run_in(tmp_path, "scenario.toml", "--altitude-km", "670", "880", "--ids", "[2-8]",
+                    "--n", "3", "--out", tmp_path / "out", "--quiet")  # fmt: skip
+    assert result.exit_code == 0, result.output
+    used = load(tmp_path / "out" / "scenario.toml")
+    assert used.selection == Selection(altitude_km=(670.0, 880.0), ids=("[2-8]",))
+    path = json.loads((tmp_path / "out" / "solution.json").read_text())["path"]
+    assert set(path) <= set("2345678")
+
+
+def epoch_catalog(folder: Path) -> Path:
+    """Table 5 with epochs: every row at 2020-05-24 but the first, at 2020-05-25 (the latest)."""
+    header, *rows = PAPER_CSV.read_text().splitlines()
+    epochs = ["2020-05-25"] + ["2020-05-24"] * (len(rows) - 1)
+    lines = [f"{header},epoch"] + [f"{row},{day}" for row, day in zip(rows, epochs, strict=True)]
+    (folder / "epochs.csv").write_text("\n".join(lines) + "\n")
+    return folder / "epochs.csv"
+
+
+@pytest.mark.parametrize(
+    ("file_start", "flags", "expected"),
+    [
+        (None, [], "2020-05-25T00:00:00+00:00"),  # the latest epoch
+        ("2020-06-01T06:00:00Z", [], "2020-06-01T06:00:00+00:00"),
+        ("2020-06-01T06:00:00Z", ["--start", "2020-07-01"], "2020-07-01T00:00:00+00:00"),
+    ],
+)
+def test_run_records_the_start_and_the_flag_overrides_it(tmp_path, file_start, flags, expected):
+    epoch_catalog(tmp_path)
+    start = "" if file_start is None else f"start = {file_start}\n"
+    (tmp_path / "scenario.toml").write_text(f'[catalog]\npath = "epochs.csv"\n{start}')
+    out = tmp_path / "out"
+    result = run_in(tmp_path, "scenario.toml", "--n", "3", "--out", out, "--quiet", *flags)
+    assert result.exit_code == 0, result.output
+    assert json.loads((out / "solution.json").read_text())["start"] == expected
+    assert f"start     {expected} (the catalog's RAANs are at this date)" in result.stdout
+    written = None if not (file_start or flags) else datetime.fromisoformat(expected)
+    assert load(out / "scenario.toml").catalog_start == written
+
+
+def test_catalog_start_moves_the_raans_of_the_gtoc9_file():
+    if not GTOC9.is_file():
+        pytest.skip(f"public data file gtoc9/debris_data.txt not found in {GTOC9.parents[1]}")
+    args = ["catalog", str(GTOC9), "--format", "gtoc9", "--ids", "0"]
+    result = CliRunner().invoke(main, [*args, "--start", "2000-01-01"])
+    assert result.exit_code == 0, result.output
+    assert "RAANs at 2000-01-01T00:00:00+00:00" in result.stderr
+    raan = read_gtoc9(GTOC9, start=datetime(2000, 1, 1, tzinfo=UTC)).frame["raan_deg"][0]
+    latest = read_gtoc9(GTOC9).frame["raan_deg"][0]
+    assert abs(raan - latest) > 1.0
+    row = result.stdout.splitlines()[1].split()
+    assert row[0] == "0" and row[3] == f"{raan:.4f}"

@@ -1,7 +1,11 @@
 """Scenario files: loading, every key, one-line errors with dotted keys, overrides, round trip."""
 
+import json
+from datetime import UTC, datetime
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
 import pytest
 
 from sdc_cvx import Catalog, Mission, SolverOptions
@@ -10,6 +14,7 @@ from sdc_cvx.scenario import (
     CATALOG_FORMATS,
     Scenario,
     ScenarioError,
+    Selection,
     apply_overrides,
     load,
 )
@@ -291,3 +296,136 @@ def test_to_dict():
     assert data["catalog"] == {"path": None, "format": "csv"}
     assert data["mission"]["drift_altitude_km"] == [400.0, 1200.0]
     assert data["solver"]["time_limit_s"] == 5.0 and data["solver"]["seed"] is None
+
+
+# ---------------------------------------------------------------------- start and selection
+GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
+START_AND_SELECTION = """
+[catalog]
+path = "debris.csv"
+start = 2020-06-01T12:00:00Z
+[selection]
+altitude_km = [700, 850.0]
+inclination_deg = [98.0, 98.8]
+max_eccentricity = 0.0002
+ids = ["1*", "[3-9]"]
+names = ["*"]
+exclude_ids = ["8"]
+"""
+
+
+def test_start_and_selection_keys_are_read(tmp_path, debris_csv):
+    scenario = load(write(tmp_path, START_AND_SELECTION))
+    assert scenario.catalog_start == datetime(2020, 6, 1, 12, tzinfo=UTC)
+    assert scenario.selection == Selection(
+        altitude_km=(700.0, 850.0), inclination_deg=(98.0, 98.8), max_eccentricity=0.0002,
+        ids=("1*", "[3-9]"), names=("*",), exclude_ids=("8",),
+    )  # fmt: skip
+    # Table 5 has no epochs: the RAANs are taken as they are, at the start given
+    catalog = scenario.load_catalog()
+    assert catalog.start == pd.Timestamp("2020-06-01T12:00:00Z")
+    assert list(catalog.frame["raan_deg"]) == list(Catalog.paper_case().frame["raan_deg"])
+
+
+@pytest.mark.parametrize(
+    ("value", "hour"),
+    [("2020-06-01T14:00:00+02:00", 12), ("'2020-06-01T12:00:00Z'", 12),
+     ("'2020-06-01 12:00'", 12), ("2020-06-01T12:00:00", 12), ("2020-06-01", 0)],
+)  # fmt: skip
+def test_start_forms_give_a_utc_date(tmp_path, debris_csv, value, hour):
+    """Offsets are converted, naive dates and times are UTC, a date is its midnight."""
+    scenario = load(write(tmp_path, f'[catalog]\npath = "debris.csv"\nstart = {value}\n'))
+    assert scenario.catalog_start == datetime(2020, 6, 1, hour, tzinfo=UTC)
+    assert scenario.catalog_start.tzinfo == UTC
+
+
+def test_start_and_selection_round_trip_through_to_toml(tmp_path, debris_csv):
+    scenario = load(write(tmp_path, START_AND_SELECTION, "given.toml"))
+    text = scenario.to_toml()
+    assert "\nstart = 2020-06-01" in text and "\n[selection]\naltitude_km = [700.0, 850.0]" in text
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    again = load(write(elsewhere, text))
+    assert again == scenario and again.selection == scenario.selection
+    assert again.catalog_start == scenario.catalog_start
+    defaults = Scenario().to_toml()  # nothing set: said in comments, read back as unset
+    assert "# not set (no filter; max_eccentricity 0.05): altitude_km" in defaults
+    assert load(write(tmp_path, defaults)).selection == Selection()
+
+
+def test_start_moves_the_raans_of_a_catalog_with_epochs(tmp_path):
+    if not GTOC9.is_file():
+        pytest.skip(f"public data file gtoc9/debris_data.txt not found in {GTOC9.parents[1]}")
+    text = f'[catalog]\npath = "{GTOC9}"\nformat = "gtoc9"\n'
+    latest = load(write(tmp_path, text)).load_catalog()
+    scenario = load(write(tmp_path, text + "start = 2000-01-01T00:00:00Z\n"))
+    catalog = scenario.load_catalog()
+    assert catalog.start == pd.Timestamp("2000-01-01T00:00:00Z") != latest.start
+    assert not np.allclose(catalog.frame["raan_deg"], latest.frame["raan_deg"])
+    assert load(write(tmp_path, scenario.to_toml())).load_catalog().start == catalog.start
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("[selection]\naltitude_km = [900, 600]\n",
+         "selection.altitude_km must be [low, high] with low <= high, got [900.0, 600.0]"),
+        ("[selection]\ninclination_deg = [99, 97]\n", "selection.inclination_deg must be [low"),
+        ("[selection]\naltitude_km = [600]\n", "selection.altitude_km must be an array of 2"),
+        ("[selection]\naltitude_km = ['600', 900]\n", "selection.altitude_km must be an array"),
+        ("[selection]\nmax_eccentricity = -0.1\n", "selection.max_eccentricity must be >= 0"),
+        ("[selection]\nmax_eccentricity = '0.1'\n", "selection.max_eccentricity must be a number"),
+        ("[selection]\nmax_eccentricity = nan\n", "selection.max_eccentricity must be a number"),
+        ("[selection]\nids = '43*'\n", "selection.ids must be an array of strings"),
+        ("[selection]\nexclude_ids = ['  ']\n", "selection.exclude_ids must not hold an empty"),
+        ("[selection]\naltitude = [600, 900]\n",
+         "unknown key selection.altitude (did you mean altitude_km?)"),
+        ("[selecton]\nids = ['1']\n", "unknown table [selecton] (did you mean selection?)"),
+        ("ids = ['1']\n", "'ids' outside a table (did you mean selection.ids?)"),
+        ('[catalog]\npath = "debris.csv"\nstart = "yesterday"\n',
+         "catalog.start must be a date and time, a TOML datetime or an ISO-8601 string"),
+        ('[catalog]\npath = "debris.csv"\nstart = 12:00:00\n', "catalog.start must be a date"),
+        ('[catalog]\npath = "debris.csv"\nstart = 2020\n', "got 2020 (integer)"),
+        ("[catalog]\nstart = 2020-06-01T00:00:00Z\n", "catalog.start needs catalog.path"),
+    ],
+)  # fmt: skip
+def test_bad_start_or_selection_names_the_dotted_key(tmp_path, debris_csv, text, expected):
+    assert expected in load_error(tmp_path, text)
+
+
+def test_selection_applies_every_filter_and_reports_unmatched_patterns():
+    kept, report = Selection(altitude_km=(700, 850), exclude_ids=("8",)).apply(Catalog.paper_case())
+    assert kept.ids == ("3", "4", "5", "6", "7", "9")
+    assert set(report["id"]) == {"1", "2", "8", "10", "11"}
+    kept, _ = Selection(max_eccentricity=0.0001, ids=("1*",)).apply(Catalog.paper_case())
+    assert kept.ids == ("1", "10")  # 11: e = 0.0003
+    with pytest.raises(ValueError, match="'Z' match no debris"):
+        Selection(ids=("Z",)).apply(Catalog.paper_case())
+
+
+def test_start_and_selection_overrides(tmp_path, debris_csv):
+    scenario = Scenario().with_overrides(catalog=debris_csv, start="2020-06-01", ids=["2", "3"])
+    assert scenario.catalog_start == datetime(2020, 6, 1, tzinfo=UTC)
+    assert scenario.selection == Selection(ids=("2", "3"))
+    changed = scenario.with_overrides(**{"selection.altitude_km": [600, 700]}, ids=None)
+    assert changed.selection == Selection(altitude_km=(600.0, 700.0), ids=("2", "3"))
+    with pytest.raises(ScenarioError, match=r"^overrides: selection\.altitude_km must be"):
+        scenario.with_overrides(altitude_km=(700, 600))
+
+
+def test_max_eccentricity_may_be_infinite(tmp_path):
+    """``inf`` keeps every eccentricity, as :func:`sdc_cvx.selection.select` allows."""
+    scenario = load(write(tmp_path, "[selection]\nmax_eccentricity = inf\n"))
+    assert scenario.selection.max_eccentricity == float("inf")
+    assert "\nmax_eccentricity = inf\n" in scenario.to_toml()
+    assert load(write(tmp_path, scenario.to_toml())) == scenario
+
+
+def test_to_dict_has_start_and_selection_only_when_set(debris_csv):
+    data = Scenario().to_dict()
+    assert "start" not in data["catalog"] and "selection" not in data  # a sweep's sha unchanged
+    data = Scenario().with_overrides(catalog=debris_csv, start="2020-06-01T12:00:00+02:00",
+                                     max_eccentricity=0.0, exclude_ids=["8"]).to_dict()  # fmt: skip
+    assert data["catalog"]["start"] == "2020-06-01T10:00:00+00:00"
+    assert data["selection"] == {"max_eccentricity": 0.0, "exclude_ids": ["8"]}
+    json.dumps(data)  # JSON-ready
