@@ -89,7 +89,7 @@ __all__ = [
     "sweep",
 ]
 
-SOLVED_STATUSES = ("converged", "converged_unconfirmed", "iteration_limit")
+SOLVED_STATUSES = ("converged", "converged_unconfirmed", "iteration_limit", "time_limit")
 """Statuses of a solved scenario (the :attr:`Solution.status` values)."""
 FAILURE_STATUSES = ("infeasible", "solver_failure", "error")
 """Statuses of a scenario that ran and gave no solution: ``infeasible``
@@ -114,7 +114,7 @@ RESULT_COLUMNS = (
 swept parameters (dotted names), and before ``scenario_sha``."""
 
 _STUDY_KEYS = ("base", "grid", "cases")
-_SCENARIO_TABLES = ("catalog", "mission", "solver")
+_SCENARIO_TABLES = ("catalog", "mission", "solver", "selection")
 _CASE_LABEL = "label"
 _KEY_HASH_CHARS = 10
 _SLUG_CHARS = 40
@@ -210,7 +210,8 @@ class Study:
             if name not in _STUDY_KEYS:
                 problems.append(
                     f"unknown study key {name!r}; allowed: base (a scenario file or "
-                    f"[base.mission]/[base.solver]/[base.catalog] tables), [grid], [[cases]]"
+                    "[base.mission]/[base.solver]/[base.catalog]/[base.selection] tables), "
+                    "[grid], [[cases]]"
                 )
         base = _study_base(data.get("base"), where, base_dir, problems)
         grid = _study_grid(data.get("grid", {}), base_dir, problems)
@@ -275,7 +276,8 @@ def _study_base(value, where: str, base_dir: Path, problems: list[str]) -> Scena
     for table, values in value.items():
         if table not in _SCENARIO_TABLES:
             problems.append(
-                f"unknown table [base.{table}]; allowed: base.catalog, base.mission, base.solver"
+                f"unknown table [base.{table}]; allowed: "
+                + ", ".join(f"base.{name}" for name in _SCENARIO_TABLES)
             )
         elif not isinstance(values, Mapping):
             problems.append(f"base.{table} must be a table ([base.{table}])")
@@ -518,7 +520,7 @@ def solve_scenario(scenario_toml: str, key: str = "") -> dict:
         data = tomllib.loads(scenario_toml)
         scenario = Scenario().with_overrides(**_flatten(data))
         row["backend"] = scenario.solver.backend
-        catalog = scenario.load_catalog()
+        catalog, _ = scenario.selection.apply(scenario.load_catalog())  # as `run` does
         solution = solve(catalog, scenario.mission, solver=scenario.solver)
         row.update(
             status=solution.status,
