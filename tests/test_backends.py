@@ -26,11 +26,12 @@ EASY_OPTIMUM = 2034.0  # of easy_knapsack(), found by every backend without limi
 
 
 def hard_knapsack():
-    """A 60-binary multi-constraint knapsack with a cardinality row: no backend finishes
-    it in 1 ms, and none has an incumbent by then."""
+    """A 200-binary multi-constraint knapsack with a cardinality row: no backend finishes
+    it in 1 ms, and none has an incumbent by then, even on a loaded machine (with 60
+    binaries CBC sometimes had one)."""
     rng = np.random.default_rng(0)
-    n = 60
-    weights = rng.integers(1, 100, (30, n))
+    n = 200
+    weights = rng.integers(1, 100, (80, n))
     x = cp.Variable(n, boolean=True)
     values = rng.integers(1, 100, n)
     problem = cp.Problem(
