@@ -9,7 +9,9 @@ solves the MILP, evaluates the chosen path with the true model, and moves the ch
 copies' references to the solution.  Phase 1 keeps the intervals wide while the path
 changes; phase 2 halves the chosen copies' intervals once it is stable, until the
 true ΔV stops moving; a new path restores them.  A step whose true plan breaks T_max
-is rejected.  Once stable, each leg's side and inclination are checked against the
+is rejected.  Every plan that meets the constraints in the true model bounds the answer:
+edges on no path that could beat it (:mod:`~sdc_cvx.dominance`) leave the MILP.  Once
+stable, each leg's side and inclination are checked against the
 cheapest alternative at its date and time (plus the mission's slack), the fixed path
 is re-optimised in the true model (Part IV-D), and one more MILP around that point
 confirms the path or resumes from another.  The cheapest re-optimised plan that ends
@@ -27,6 +29,7 @@ import pandas as pd
 
 from .backends import SolveReport, SolverOptions, Status, chain_of, solve_with_fallback
 from .catalog import Catalog
+from .dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
 from .edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .mission import Mission
@@ -80,6 +83,11 @@ class SequentialSettings:
     duration_model : {"secant", "two_segments"}
         The paper's secant duration (Eq. 17-18) or its two half-segments (Fig. 14),
         tighter at the cost of one more binary per edge (see ``benchmarks``).
+    seed_paths : int
+        Before the first MILP, this many of the cheapest paths are re-optimised in the
+        true model (:meth:`_Driver.seed`); the cheapest that ends by T_max is held from
+        the start, bounds the answer (dominated edges leave the first MILP) and is the
+        first MILP's starting point.  0: none.
     """
 
     alpha_km: float = 50.0
@@ -93,6 +101,7 @@ class SequentialSettings:
     initial_retries: int = 3
     date_windows: int | None = None
     duration_model: str = "secant"
+    seed_paths: int = 5
 
 
 def edge_geometry(edges: pd.DataFrame, catalog: Catalog, mission: Mission) -> EdgeGeometry:
@@ -241,6 +250,12 @@ class _Driver:
             raise MissionInfeasible(_relax_message(mission, self.table.summary()))
         self.orbits = node_orbits(catalog, mission)
         self.geometry = edge_geometry(self.kept, catalog, mission)
+        g = self.geometry
+        edge_floor = transfer_dv_floor(g.origin, g.target, g.a_low, g.a_high)
+        self.floor = path_cost_floor(self.kept["i"], self.kept["j"], edge_floor, nodes.cost_mps,
+                                     nodes.legs, first=nodes.first)  # fmt: skip
+        self.upper = (np.inf, None)  # cheapest plan that ends by T_max: (ΔV, (path, legs, a))
+        self.stopped = False  # a MILP reached its time limit without a solution
         start = time.perf_counter()
         self.model = PathModel(
             len(catalog), self.kept["i"].to_numpy(), self.kept["j"].to_numpy(),
@@ -273,8 +288,10 @@ class _Driver:
         start = time.perf_counter()
         coefficients = linearize(self.geometry, self.region, tmax_days=self.mission.tmax_days,
                                  depart_range=self.windows)  # fmt: skip
+        coefficients = replace(coefficients, available=coefficients.available & self.undominated())
+        warm = self.start_from_held(coefficients) or k > 0
         self.model.update(coefficients)
-        report = solve_with_fallback(self.model.problem, self.chain, warm_start=k > 0)
+        report = solve_with_fallback(self.model.problem, self.chain, warm_start=warm)
         self.backends_used.add(report.backend)
         if report.fallbacks:
             switched = "; ".join(report.fallbacks)
@@ -290,6 +307,7 @@ class _Driver:
         alpha_km = np.asarray(self.model.p.value)[legs]
         a_legs = coefficients.a_ref[legs] + alpha_km * 1e3
         evaluation = self.evaluate(path, legs, a_legs)
+        self.bound_by(path, legs, a_legs, evaluation)
         if report.status == Status.TIME_LIMIT:
             gap = "unknown" if report.mip_gap is None else f"{report.mip_gap:.2%}"
             note = (note + "; " if note else "") + f"time limit: incumbent used (gap {gap})"
@@ -302,6 +320,54 @@ class _Driver:
             )
         return path, legs, a_legs, evaluation
 
+    def start_from_held(self, coefficients) -> bool:
+        """Solve the MILP restricted to the held plan's path, as the next solve's start.
+
+        CVXPY warm-starts HiGHS (and the commercial backends) from the last solution, so
+        the full MILP then starts with the held plan as its incumbent instead of
+        searching for one.  Skipped when the last iteration chose that path already.
+        False if the linearised model does not admit the path.
+        """
+        plan = self.upper[1]
+        if plan is None or (self.history and self.history[-1].path == self.id_path(plan[0])):
+            return False
+        only = np.zeros_like(coefficients.available)
+        only[plan[1]] = coefficients.available[plan[1]]
+        self.model.update(replace(coefficients, available=only))
+        return solve_with_fallback(self.model.problem, self.chain).status.has_solution
+
+    def id_path(self, path) -> tuple[str, ...]:
+        return tuple(self.catalog.ids[k] for k in path)
+
+    def undominated(self) -> np.ndarray:
+        """Edges on some path that may cost less than the cheapest plan in hand."""
+        cost = self.upper[0]
+        return self.floor <= cost + 1e-9 * abs(cost) + 1e-6
+
+    def bound_by(self, path, legs, a_drift, evaluation: PlanEvaluation):
+        """Keep the cheapest plan seen that meets T_max and T_min in the true model."""
+        ends_in_time = evaluation.end_day <= self.mission.tmax_days + 1e-6 and bool(
+            np.all(evaluation.duration_days >= self.mission.min_transfer_days - 1e-6)
+        )
+        cost = self.total(path, evaluation)
+        if ends_in_time and cost < self.upper[0]:
+            self.upper = (cost, (path, legs, np.asarray(a_drift, dtype=float)))
+        return ends_in_time
+
+    def total(self, path, evaluation) -> float:
+        """Total ΔV of a plan: its transfers plus the operations at its debris [m/s]."""
+        return float(evaluation.dv_mps.sum() + self.nodes.cost_mps[path].sum())
+
+    def answer(self, status: str):
+        """The best re-optimised plan, after re-optimising a cheaper iterate if one was seen."""
+        cost, plan = self.upper
+        best = np.inf if self.best is None else self.total(self.best[0], self.best[2].evaluation)
+        if plan is not None and cost < best - 1e-6:
+            self.reoptimize(*plan)
+        if self.best is None:
+            raise SolverFailure("no re-optimised plan ends by T_max")
+        return self.best + (status,)
+
     def evaluate(self, path, legs, a_legs) -> PlanEvaluation:
         return evaluate_plan(
             self.orbits, path, a_legs, self.geometry.inc_drift[legs],
@@ -309,14 +375,11 @@ class _Driver:
         )  # fmt: skip
 
     def record(self, report: SolveReport, path, legs, evaluation, start, note):
-        ids = self.catalog.ids
         record = IterationRecord(
             iteration=len(self.history),
-            path=tuple(ids[k] for k in path) if path else (),
+            path=self.id_path(path),
             dv_linearized_mps=report.objective,
-            dv_true_mps=float(evaluation.dv_mps.sum() + self.nodes.cost_mps[path].sum())
-            if path
-            else None,
+            dv_true_mps=self.total(path, evaluation) if path else None,
             duration_true_days=evaluation.end_day if path else None,
             nodes=report.nodes,
             seconds=time.perf_counter() - start,
@@ -330,6 +393,16 @@ class _Driver:
         self.progress(record)
 
     def _no_solution(self, report: SolveReport, start):
+        if report.status == Status.NO_SOLUTION and self.upper[1] is not None:
+            # the time limit struck before any MILP solution, but a plan is held: keep it
+            self.stopped = True
+            self.record(report, [], [], None, start, "time limit without a solution")
+            self.notes.append(
+                f"iteration {len(self.history) - 1}: {report.backend} reached its time limit "
+                "without a solution; the cheapest plan held is returned (raise the time limit "
+                "to let the iterations continue)"
+            )
+            return None
         if report.status in (Status.ERROR, Status.NO_SOLUTION, Status.UNBOUNDED):
             hint = " (raise the time limit)" if report.status == Status.NO_SOLUTION else ""
             raise SolverFailure(f"{report.backend}: {report.status.value}: {report.message}{hint}")
@@ -384,12 +457,15 @@ class _Driver:
         nonlinear step the continuous one.  If that MILP prefers another path, the
         iterations resume from it.
         """
+        self.seed()
         last_path, last_dv = None, None
         pending = None  # re-optimised plan waiting for the confirming MILP
         flips = confirmations = 0
         while len(self.history) < self.settings.max_iterations:
             outcome = self.iterate(note="confirming the re-optimised point" if pending else "")
             if outcome is None:
+                if self.stopped:
+                    return self.answer("time_limit")
                 continue
             path, legs, a_legs, evaluation = outcome
             dv_true = float(evaluation.dv_mps.sum())
@@ -407,7 +483,7 @@ class _Driver:
                 continue
             if pending is not None:
                 if not changed:
-                    return self.best + ("converged",)
+                    return self.answer("converged")
                 self.notes.append("the MILP around the re-optimised point chose another path")
                 pending = None
             elif not changed:
@@ -422,7 +498,7 @@ class _Driver:
                         continue
                     final = self.reoptimize(path, legs, a_legs)
                     if confirmations == self.settings.max_confirmations:
-                        return self.best + ("converged_unconfirmed",)
+                        return self.answer("converged_unconfirmed")
                     confirmations += 1
                     self.move_references(path, legs, final.a_drift, final.evaluation, False)
                     pending, last_path, last_dv = final, path, dv_true
@@ -432,13 +508,82 @@ class _Driver:
             # a path seen before does not restore wide intervals (no ping-pong between paths)
             self.move_references(path, legs, a_legs, evaluation, changed and not revisited)
             last_path, last_dv = path, dv_true
-        if self.best is not None:
+        if self.best is not None or self.upper[1] is not None:
             self.notes.append(f"iteration limit {self.settings.max_iterations} reached")
-            return self.best + ("iteration_limit",)
+            return self.answer("iteration_limit")
         raise SolverFailure(
             f"no converged path within {self.settings.max_iterations} iterations; raise "
             "max_iterations or loosen dv_tol_mps"
         )
+
+    def seed(self):
+        """Hold the cheapest re-optimised plan among paths that are cheap leg by leg.
+
+        Two rankings, ``seed_paths`` paths each: by the pre-optimised edge costs (Part
+        IV-B, at the references), and with leg k costed as the cheapest transfer leaving
+        on the day it would leave if every leg took an equal share of the mission,
+        within that share (the same pre-optimisation at the leg's own date).  On GTOC9
+        the second ranks first the path that sequential linearisation alone reached
+        only by chance (815th by the first); on small catalogs either may be the one.
+        """
+        count = self.settings.seed_paths
+        if count <= 0:
+            return
+        start = time.perf_counter()
+        kept, g, legs_count = self.kept, self.geometry, self.nodes.legs
+        first_ops, ops = self.depart_range[0], float(self.mission.deorbit_days)
+        share = (self.mission.tmax_days - first_ops - legs_count * ops) / legs_count
+        if share <= 0:
+            return
+        leg_costs = np.stack([
+            cheapest_transfer(g.origin, g.target, (first_ops + k * (share + ops)) * SECONDS_PER_DAY,
+                              share * SECONDS_PER_DAY, g.a_low, g.a_high,
+                              inclination=self.mission.drift_inclination, j2=self.mission.j2).dv
+            for k in range(legs_count)
+        ])  # fmt: skip
+        candidates = {}  # path -> edges, in order of ranking
+        for cost in (kept["dv_mps"].to_numpy(dtype=float), leg_costs):
+            ranked = cheapest_paths(
+                kept["i"], kept["j"], cost, legs_count, first=self.nodes.first,
+                must_visit=self.nodes.must_visit, width=max(200, count),
+            )  # fmt: skip
+            for _, path, legs in ranked[:count]:
+                candidates.setdefault(path, legs)
+        a_ref = kept["drift_a_km"].to_numpy(dtype=float) * 1e3
+        held = None
+        for path, legs in candidates.items():
+            path, legs = list(path), list(legs)
+            final = reoptimize(
+                self.orbits, path, g.side[legs], g.inc_drift[legs], a_ref[legs],
+                tmax_days=self.mission.tmax_days, deorbit_days=self.nodes.deorbit_days,
+                a_low=g.a_low, a_high=g.a_high, j2=self.mission.j2,
+                inclination=self.mission.drift_inclination,
+                min_days=self.mission.min_transfer_days,
+            )  # fmt: skip
+            cheapest = self.upper[0]
+            self.bound_by(path, legs, final.a_drift, final.evaluation)
+            if self.upper[0] < cheapest:
+                held = (legs, final)
+        self.timings["seed_s"] = time.perf_counter() - start
+        if held is not None:
+            # the held plan's copies that share its side and inclination take its radii
+            # and dates: the first MILP is linearised around it and can start from it
+            legs, final = held
+            same = (final.side == g.side[legs]) & np.isclose(final.inc_drift, g.inc_drift[legs])
+            if same.any():
+                a_ref, t_ref = self.region.a_ref.copy(), self.region.t_ref.copy()
+                chosen = np.asarray(legs)[same]
+                a_ref[chosen] = final.a_drift[same]
+                lo, hi = self.windows[0][chosen], self.windows[1][chosen]
+                t_ref[chosen] = np.clip(final.evaluation.departure_day[same], lo, hi)
+                self.region = replace(self.region, a_ref=a_ref, t_ref=t_ref)
+            ids = self.catalog.ids
+            shown = "->".join(ids[k] for k in self.upper[1][0])
+            self.notes.append(
+                f"held before the first MILP: {shown} at {self.upper[0]:.1f} m/s (cheapest of "
+                f"{len(candidates)} paths re-optimised); {int((~self.undominated()).sum())} of "
+                f"{len(kept)} edge copies dominated"
+            )
 
     def reoptimize(self, path, legs, a_legs):
         start = time.perf_counter()
@@ -458,12 +603,10 @@ class _Driver:
             time.perf_counter() - start
         )
         self.notes.append(f"re-optimisation: {final.message}; {final.improved_by_mps:+.2f} m/s")
-        ends_in_time = final.evaluation.end_day <= self.mission.tmax_days + 1e-6 and bool(
-            np.all(final.evaluation.duration_days >= self.mission.min_transfer_days - 1e-6)
-        )
+        ends_in_time = self.bound_by(path, legs, final.a_drift, final.evaluation)
+        cost = self.total(path, final.evaluation)
         if ends_in_time and (
-            self.best is None
-            or final.evaluation.dv_mps.sum() < self.best[2].evaluation.dv_mps.sum()
+            self.best is None or cost < self.total(self.best[0], self.best[2].evaluation)
         ):
             self.best = (path, legs, final)
         return final
@@ -580,6 +723,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
             "edge_copies": len(driver.kept),
             "date_windows": int(driver.kept["window"].max()) + 1,
             "edges_total": len(driver.table.frame),
+            "edges_dominated": int((~driver.undominated()).sum()),
             "binaries": size.binaries,
             "continuous": size.continuous,
             "constraints": size.constraints,

@@ -6,7 +6,7 @@ import pytest
 
 from sdc_cvx import Catalog, Mission
 from sdc_cvx.orbits import SECONDS_PER_DAY
-from sdc_cvx.sequential import MissionInfeasible, SolverFailure, solve
+from sdc_cvx.sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
 from sdc_cvx.synthetic import sso_catalog
 from sdc_cvx.transfer import NodeOrbits, transfer_duration, transfer_dv
 
@@ -106,17 +106,34 @@ def test_more_debris_than_candidates_is_an_error():
         solve(Catalog.paper_case(), Mission(n=12))
 
 
+def no_incumbent(problem, chain, warm_start=False):
+    from sdc_cvx.backends import SolveReport, Status
+
+    return SolveReport(Status.NO_SOLUTION, None, None, None, 0, 0.1, 0.0, "HIGHS", "time limit")
+
+
 def test_time_limit_without_incumbent_is_not_a_solution(monkeypatch):
     """A backend that stops before any incumbent must surface as a failure, not zeros."""
     import sdc_cvx.sequential as sequential
-    from sdc_cvx.backends import SolveReport, Status
-
-    def no_incumbent(problem, chain, warm_start=False):
-        return SolveReport(Status.NO_SOLUTION, None, None, None, 0, 0.1, 0.0, "HIGHS", "time limit")
 
     monkeypatch.setattr(sequential, "solve_with_fallback", no_incumbent)
     with pytest.raises(SolverFailure, match="raise the time limit"):
-        solve()
+        solve(settings=SequentialSettings(seed_paths=0))
+
+
+def test_time_limit_without_incumbent_returns_the_plan_held_and_says_so(monkeypatch):
+    """With a plan held before the first MILP (seed paths), a MILP stopped empty-handed
+    ends the run on that plan, with its own status, instead of losing it."""
+    import sdc_cvx.sequential as sequential
+
+    monkeypatch.setattr(sequential, "solve_with_fallback", no_incumbent)
+    sol = solve()
+    assert sol.status == "time_limit"
+    assert sol.iterations[0].path == () and sol.iterations[0].status == "no_solution"
+    assert any("without a solution; the cheapest plan held" in note for note in sol.notes)
+    check_legs_against_physics(sol, Catalog.paper_case(), Mission())
+    assert sol.total_duration_days <= 365.25 + 1e-6
+    assert len(sol.path) == 5 and len(set(sol.path)) == 5
 
 
 def test_solution_json_has_the_documented_keys(paper_solution):
