@@ -18,13 +18,16 @@ from sdc_cvx.sequential import solve
 from sdc_cvx.synthetic import sso_catalog
 
 
-def phases(catalog, solver):
-    sol = solve(catalog, Mission(), solver=solver)
+def phases(catalog, solver, mission=None):
+    """One solve's model size, iterations, seconds per phase and answer, as a flat dict."""
+    sol = solve(catalog, mission or Mission(), solver=solver)
     later = sol.iterations[1:] or sol.iterations
     t = sol.timings
     return {
         "N": len(catalog),
         "edges": sol.model_size["edges_kept"],
+        "copies": sol.model_size["edge_copies"],
+        "dominated": sol.model_size["edges_dominated"],
         "binaries": sol.model_size["binaries"],
         "rows": sol.model_size["constraints"],
         "iters": len(sol.iterations),
@@ -34,10 +37,14 @@ def phases(catalog, solver):
         "1st_highs_s": sol.iterations[0].solve_seconds,
         "resolve_cvxpy_ms": 1e3 * statistics.median(r.cvxpy_seconds for r in later),
         "resolve_highs_s": statistics.median(r.solve_seconds for r in later),
+        "milp_s": sum(r.solve_seconds for r in sol.iterations),
+        "cvxpy_s": sum(r.cvxpy_seconds for r in sol.iterations),
         "reopt_s": t.get("reoptimize_s", 0.0),
         "total_s": t["total_s"],
         "dv_mps": sol.total_dv_mps,
         "nodes": sum(r.nodes or 0 for r in sol.iterations),
+        "time_limited": sum(r.status == "time_limit" for r in sol.iterations),
+        "status": sol.status,
     }
 
 
