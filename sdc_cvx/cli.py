@@ -436,7 +436,7 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     finishes (results.csv and one solution.json per scenario), so --resume after an
     interruption only runs what is missing.
     """
-    from .sweep import SweepError, load_study, run_study  # dask only when a scheduler is used
+    from .sweep import SOLVED_STATUSES, SweepError, load_study, run_study  # dask when asked
 
     try:
         study = load_study(study_file)
@@ -449,6 +449,6 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
                             progress=show)  # fmt: skip
     except SweepError as err:
         fail(str(err))
-    done = results["status"].isin(["converged", "converged_unconfirmed", "iteration_limit"])
+    done = results["status"].isin(SOLVED_STATUSES)
     click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
                f"{folder}/results.csv")  # fmt: skip

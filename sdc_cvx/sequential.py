@@ -9,8 +9,10 @@ solves the MILP, evaluates the chosen path with the true model, and moves the ch
 copies' references to the solution.  Phase 1 keeps the intervals wide while the path
 changes; phase 2 halves the chosen copies' intervals once it is stable, until the
 true ΔV stops moving; a new path restores them.  A step whose true plan breaks T_max
-is rejected.  Every plan that meets the constraints in the true model bounds the answer:
-edges on no path that could beat it (:mod:`~sdc_cvx.dominance`) leave the MILP.  Once
+is rejected.  Before the first MILP a few cheap paths are re-optimised in the true
+model and the best is held; every plan that meets the constraints in the true model
+bounds the answer, edges on no path that could beat it (:mod:`~sdc_cvx.dominance`)
+leave the MILP, and each MILP starts from the held plan.  Once
 stable, each leg's side and inclination are checked against the
 cheapest alternative at its date and time (plus the mission's slack), the fixed path
 is re-optimised in the true model (Part IV-D), and one more MILP around that point
@@ -84,10 +86,10 @@ class SequentialSettings:
         The paper's secant duration (Eq. 17-18) or its two half-segments (Fig. 14),
         tighter at the cost of one more binary per edge (see ``benchmarks``).
     seed_paths : int
-        Before the first MILP, this many of the cheapest paths are re-optimised in the
-        true model (:meth:`_Driver.seed`); the cheapest that ends by T_max is held from
-        the start, bounds the answer (dominated edges leave the first MILP) and is the
-        first MILP's starting point.  0: none.
+        Before the first MILP, the cheapest ``seed_paths`` paths of each of two rankings
+        are re-optimised in the true model (:meth:`_Driver.seed`); the cheapest plan that
+        ends by T_max is held from the start, bounds the answer (dominated edges leave
+        the first MILP) and is the first MILP's starting point.  0: none.
     """
 
     alpha_km: float = 50.0

@@ -139,7 +139,10 @@ class Solution:
     physics module; ``catalog`` is the catalog solved over (with the injection
     orbit when there is one); ``initial_legs`` is the first iteration's plan (the paper's
     "before optimisation" of Fig. 19); ``iterations`` is the history of the
-    sequential linearisation.
+    sequential linearisation.  ``status``: ``converged`` (the path survived a MILP
+    around its re-optimised point), ``converged_unconfirmed`` (it kept changing after
+    ``max_confirmations``), ``iteration_limit``, or ``time_limit`` (a MILP stopped at its
+    time limit without a solution; the cheapest plan held is returned, see ``notes``).
     """
 
     path: tuple[str, ...]
