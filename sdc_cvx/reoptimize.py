@@ -113,7 +113,8 @@ def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, mi
 
 
 def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days, deorbit_days,
-               a_low, a_high, j2, inclination="table3", min_days=0.0) -> Reoptimized:  # fmt: skip
+               a_low, a_high, j2, inclination="table3", min_days=0.0,
+               bisection_steps=BISECTION_STEPS, polish=True) -> Reoptimized:  # fmt: skip
     """Minimise the true total ΔV of a fixed path subject to the true end date <= T_max.
 
     Parameters
@@ -133,6 +134,10 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
         Drift inclinations the forward pass may use.
     min_days : float
         Shortest allowed transfer T_min [days].
+    bisection_steps : int
+        Bisection steps on the price of time.
+    polish : bool
+        Polish the best plan with SLSQP (fewer steps and no polish: a quicker estimate).
 
     Returns
     -------
@@ -167,7 +172,7 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
         while not attempt(high_price) and high_price < 1e6:
             low_price, high_price = high_price, 10 * high_price
         if plans[high_price][3]:
-            for _ in range(BISECTION_STEPS):
+            for _ in range(bisection_steps):
                 middle = 0.5 * (low_price + high_price)
                 if attempt(middle):
                     high_price = middle
@@ -182,8 +187,8 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
         key=lambda c: plan(c[0], c[1]).dv_mps.sum(),
         default=candidates[0],
     )
-    polished = _polish(orbits, path, best, plan, feasible, tmax_days, a_low, a_high, j2)
-    if polished is not None:
+    polished = polish and _polish(orbits, path, best, plan, feasible, tmax_days, a_low, a_high, j2)
+    if polished:
         best = polished
     a, inc, sides, message = best
     final, initial = plan(a, inc), plan(start, inc_drift)

@@ -121,7 +121,7 @@ class IterationRecord:
     seconds: float
     solve_seconds: float
     cvxpy_seconds: float
-    alpha_km: float
+    alpha_km: float | None  # widest radius interval of the chosen copies; None without a path
     status: str
     note: str = ""
 
