@@ -215,19 +215,19 @@ def plot(rows, path: Path):
 def final_milp(catalog: Catalog, time_limit: float):
     """Run the driver with HiGHS in-process and keep its last MILP (parameter values)."""
     captured = {}
-    real = sequential.solve_milp
+    real = sequential.solve_with_fallback
 
-    def spy(problem, options, **kwargs):
+    def spy(problem, chain, **kwargs):
         captured["problem"] = problem
         captured["values"] = [(p, None if p.value is None else p.value.copy())
                               for p in problem.parameters()]  # fmt: skip
-        return real(problem, options, **kwargs)
+        return real(problem, chain, **kwargs)
 
-    sequential.solve_milp = spy
+    sequential.solve_with_fallback = spy
     try:
         sequential.solve(catalog, Mission(), solver=SolverOptions(time_limit_s=time_limit))
     finally:
-        sequential.solve_milp = real
+        sequential.solve_with_fallback = real
     for parameter, value in captured["values"]:
         parameter.value = value
     return captured["problem"]
