@@ -191,16 +191,25 @@ def plot(rows, path: Path):
         runs = sorted((r for r in rows if r["backend"] == backend), key=lambda r: r["N"])
         ok = [r for r in runs if r.get("dv_mps") is not None]
         ax_time.plot([r["N"] for r in ok], [r["seconds"] for r in ok], "o-", label=backend)
+        color = ax_time.lines[-1].get_color()
+        stopped = [r for r in ok if r.get("status") not in ("converged", "converged_unconfirmed")]
+        if stopped:  # a plan, but the iterations stopped at a limit
+            ax_time.plot([r["N"] for r in stopped], [r["seconds"] for r in stopped], "o",
+                         markersize=11, markerfacecolor="none", color=color)  # fmt: skip
         failed = [r for r in runs if r.get("dv_mps") is None]
         if failed:
             ax_time.plot([r["N"] for r in failed], [r["seconds"] for r in failed], "x",
-                         color=ax_time.lines[-1].get_color())  # fmt: skip
+                         color=color)  # fmt: skip
         with_nodes = [r for r in ok if r.get("nodes") is not None]
         if with_nodes:
             ax_nodes.plot([r["N"] for r in with_nodes], [max(r["nodes"], 1) for r in with_nodes],
                           "o-", label=backend)  # fmt: skip
-    ax_time.set(xlabel="debris in the catalog N", ylabel="end-to-end seconds (subprocess)",
-                yscale="log", title="Sequential solve, per backend (x: failed)")  # fmt: skip
+    ax_time.set(
+        xlabel="debris in the catalog N",
+        ylabel="end-to-end seconds (subprocess)",
+        yscale="log",
+        title="Per backend (ringed: stopped at a limit, x: failed)",
+    )
     ax_nodes.set(xlabel="debris in the catalog N", ylabel="B&B nodes, all iterations",
                  yscale="log", title="Nodes (backends that report them)")  # fmt: skip
     for ax in (ax_time, ax_nodes):
