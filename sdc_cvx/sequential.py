@@ -347,6 +347,24 @@ class _Driver:
         self.model.update(replace(coefficients, available=only))
         return solve_with_fallback(self.model.problem, self.chain).status.has_solution
 
+    def worse_than_held(self, path, evaluation) -> bool:
+        """The MILP kept the held plan's path but its step made the true plan worse."""
+        cost, plan = self.upper
+        if plan is None or list(plan[0]) != list(path):
+            return False
+        late = evaluation.end_day > self.mission.tmax_days + 1e-6
+        return late or self.total(path, evaluation) > cost + self.settings.dv_tol_mps
+
+    def return_to_held(self):
+        """Reject the step: linearise the held plan's copies around it, narrower."""
+        path, legs, a_drift = self.upper[1]
+        self.set_references(legs, a_drift, self.evaluate(path, legs, a_drift).departure_day)
+        self.narrow(legs, dates=True)
+        self.notes.append(
+            f"iteration {len(self.history) - 1}: the step made the held plan worse in the true "
+            "model: rejected, intervals narrowed around the held plan"
+        )
+
     def id_path(self, path) -> tuple[str, ...]:
         return tuple(self.catalog.ids[k] for k in path)
 
@@ -439,18 +457,20 @@ class _Driver:
         date (kept inside its date window); other edges keep theirs.  A new path
         restores the wide intervals (phase 1); a stable path halves them (phase 2).
         """
-        a_ref, t_ref = self.region.a_ref.copy(), self.region.t_ref.copy()
-        a_ref[legs] = a_legs
-        t_ref[legs] = np.clip(
-            evaluation.departure_day, self.windows[0][legs], self.windows[1][legs]
-        )
+        self.set_references(legs, a_legs, evaluation.departure_day)
         if path_changed:
-            alpha = np.full_like(a_ref, self.alpha0)
-            tau = np.full_like(a_ref, self.tau0)
-            self.region = TrustRegion(a_ref, t_ref, alpha, tau)
+            m = len(self.region.a_ref)
+            self.region = replace(self.region, alpha_km=np.full(m, self.alpha0),
+                                  tau_days=np.full(m, self.tau0))  # fmt: skip
         else:
-            self.region = replace(self.region, a_ref=a_ref, t_ref=t_ref)
             self.narrow(legs, dates=True)
+
+    def set_references(self, legs, a_drift, departure_day):
+        """Linearise ``legs`` around these radii [m] and departure dates (within windows)."""
+        a_ref, t_ref = self.region.a_ref.copy(), self.region.t_ref.copy()
+        a_ref[legs] = a_drift
+        t_ref[legs] = np.clip(departure_day, self.windows[0][legs], self.windows[1][legs])
+        self.region = replace(self.region, a_ref=a_ref, t_ref=t_ref)
 
     def narrow(self, edges, *, dates: bool):
         """Halve the radius (and date) intervals of ``edges``; other edges stay wide."""
@@ -479,6 +499,9 @@ class _Driver:
                     return self.answer("time_limit")
                 continue
             path, legs, a_legs, evaluation = outcome
+            if self.worse_than_held(path, evaluation):
+                self.return_to_held()
+                continue
             dv_true = float(evaluation.dv_mps.sum())
             changed = path != last_path
             late = evaluation.end_day > self.mission.tmax_days + 1e-6 or bool(
@@ -589,17 +612,13 @@ class _Driver:
                 held = (legs, final)
         self.timings["seed_s"] = time.perf_counter() - start
         if held is not None:
-            # the held plan's copies that share its side and inclination take its radii
-            # and dates: the first MILP is linearised around it and can start from it
+            # the held plan's copies take its sides, inclinations, radii and dates: the
+            # first MILP is linearised around it and can start from it
             legs, final = held
-            same = (final.side == g.side[legs]) & np.isclose(final.inc_drift, g.inc_drift[legs])
-            if same.any():
-                a_ref, t_ref = self.region.a_ref.copy(), self.region.t_ref.copy()
-                chosen = np.asarray(legs)[same]
-                a_ref[chosen] = final.a_drift[same]
-                lo, hi = self.windows[0][chosen], self.windows[1][chosen]
-                t_ref[chosen] = np.clip(final.evaluation.departure_day[same], lo, hi)
-                self.region = replace(self.region, a_ref=a_ref, t_ref=t_ref)
+            side, inc = g.side.copy(), g.inc_drift.copy()
+            side[legs], inc[legs] = final.side, final.inc_drift
+            self.geometry = g._replace(side=side, inc_drift=inc)
+            self.set_references(legs, final.a_drift, final.evaluation.departure_day)
             ids = self.catalog.ids
             shown = "->".join(ids[k] for k in self.upper[1][0])
             self.notes.append(

@@ -364,19 +364,17 @@ CASES = [
 CASE_PARAMS = [pytest.param(case, id=case.name) for case in CASES]
 
 # Known limitations of the solver, measured against this brute force (sdc_cvx 0.1.0):
-# 5 of the 8 cases are solved to the optimum, the other 3 end 0.5-2.5 % above it.
+# 6 of the 8 cases are solved to the optimum, the other 2 end 1-2.5 % above it.
 # Sequential linearisation is a local method (Part IV: "the solution found is only valid
 # in the vicinity of the starting point"): on catalogs whose J2 rates differ, where a
 # leg's best drift orbit depends strongly on its date and RAAN gaps close and wrap
 # during the mission, it can settle on the second-best path or on a plan short of the
-# optimum.  Which cases fall short depends on the starting point: since the driver
-# re-optimises a few cheap paths before the first MILP (seed paths), spread5-n3-250d
-# (7 % above) and spread4-n3-200d (0.6 %) are solved and spread4-n3-120d ends 0.5 %
-# above.  Strict: a fix makes these tests fail until the mark is removed.
+# optimum.  Since the driver re-optimises a few cheap paths before the first MILP and
+# starts from the best (seed paths), spread5-n3-250d (7 % above before) and
+# spread4-n3-200d (0.6 %) are solved.  Strict: a fix makes these tests fail until the
+# mark is removed.
 KNOWN_GAPS = {
     "spread5-n3-200d": "second-best path A-C-E 221.9 m/s vs optimum A-E-C 216.4",
-    "spread4-n3-120d": "right path A-D-B but 344.2 m/s vs 342.6 (second leg's drift short of "
-    "the asymptote)",
     "sso4-n4-365d": "path S-P-R-Q 461.1 m/s vs optimum P-S-R-Q 456.3",
 }
 SOLVER_PARAMS = [
