@@ -348,12 +348,14 @@ class _Driver:
         return solve_with_fallback(self.model.problem, self.chain).status.has_solution
 
     def worse_than_held(self, path, evaluation) -> bool:
-        """The MILP kept the held plan's path but its step made the true plan worse."""
+        """The MILP kept the held plan's path but its step made the true ΔV worse.
+
+        (A step that only ends late is rejected in :meth:`run`, around the same point.)
+        """
         cost, plan = self.upper
         if plan is None or list(plan[0]) != list(path):
             return False
-        late = evaluation.end_day > self.mission.tmax_days + 1e-6
-        return late or self.total(path, evaluation) > cost + self.settings.dv_tol_mps
+        return self.total(path, evaluation) > cost + self.settings.dv_tol_mps
 
     def return_to_held(self):
         """Reject the step: linearise the held plan's copies around it, narrower."""
@@ -507,7 +509,8 @@ class _Driver:
             late = evaluation.end_day > self.mission.tmax_days + 1e-6 or bool(
                 np.any(evaluation.duration_days < self.mission.min_transfer_days - 1e-6)
             )
-            if late and last_path is not None and pending is None:
+            stalled = not changed and abs(last_dv - dv_true) <= self.settings.dv_tol_mps
+            if late and last_path is not None and pending is None and not stalled:
                 # the linear durations under-estimated (date cross terms): reject the step
                 self.narrow(legs, dates=True)
                 self.notes.append(
@@ -521,9 +524,9 @@ class _Driver:
                 self.notes.append("the MILP around the re-optimised point chose another path")
                 pending = None
             elif not changed:
-                stalled = abs(last_dv - dv_true) <= self.settings.dv_tol_mps
+                # a stalled plan that ends a little late is made to fit by the re-optimisation
                 narrowest = np.max(self.region.alpha_km[legs]) <= self.settings.min_alpha_km
-                if (stalled or narrowest) and not late:
+                if stalled or narrowest:
                     if flips < self.settings.max_assumption_rounds and self.flip_assumptions(
                         path, legs, a_legs, evaluation
                     ):
