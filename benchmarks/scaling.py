@@ -11,8 +11,8 @@ and ``--time-limit`` seconds per MILP.  Prints one row per case and writes
 ``scaling.csv`` and ``scaling.png`` (seconds per phase and model size against N) to
 ``--out``.  Columns: edges kept (pairs), edge copies (date windows), dominated copies at
 the end, binaries, constraint rows, iterations, iterations stopped by the time limit,
-B&B nodes (all iterations), seconds in pre-optimisation, model build, MILP backend,
-CVXPY, re-optimisation and in total, final ΔV.  The machine is shared: compare within
+B&B nodes (all iterations), seconds in pre-optimisation, model build, seed plans, MILP
+backend, CVXPY, re-optimisation and in total, final ΔV.  The machine is shared: compare within
 one run.
 """
 
@@ -36,7 +36,7 @@ CASES = {
     "sso_rb_81": lambda: select(read_catalog(SSO_RB, format="tle"))[0],
     "gtoc9_123": lambda: read_catalog(GTOC9, format="gtoc9"),
 }
-PHASES = ["preopt_s", "build_s", "milp_s", "cvxpy_s", "reopt_s"]
+PHASES = ["preopt_s", "build_s", "seed_s", "milp_s", "cvxpy_s", "reopt_s"]
 
 
 def plot(table: pd.DataFrame, path: Path):

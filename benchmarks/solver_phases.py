@@ -33,6 +33,7 @@ def phases(catalog, solver, mission=None):
         "iters": len(sol.iterations),
         "preopt_s": t["preoptimize_s"],
         "build_s": t["build_s"],
+        "seed_s": t.get("seed_s", 0.0),
         "1st_compile_s": t["first_solve_overhead_s"],
         "1st_highs_s": sol.iterations[0].solve_seconds,
         "resolve_cvxpy_ms": 1e3 * statistics.median(r.cvxpy_seconds for r in later),
