@@ -37,7 +37,7 @@ from .linearize import EdgeGeometry, TrustRegion, linearize
 from .mission import Mission
 from .model import ModelSize, PathModel
 from .orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
-from .reoptimize import BISECTION_STEPS, reoptimize
+from .reoptimize import reoptimize
 from .solution import IterationRecord, Leg, PlanEvaluation, Solution, evaluate_plan
 from .transfer import cheapest_transfer
 
@@ -377,13 +377,17 @@ class _Driver:
 
     def bound_by(self, path, legs, a_drift, evaluation: PlanEvaluation):
         """Keep the cheapest plan seen that meets T_max and T_min in the true model."""
-        ends_in_time = evaluation.end_day <= self.mission.tmax_days + 1e-6 and bool(
-            np.all(evaluation.duration_days >= self.mission.min_transfer_days - 1e-6)
-        )
+        ends_in_time = self.fits(evaluation)
         cost = self.total(path, evaluation)
         if ends_in_time and cost < self.upper[0]:
             self.upper = (cost, (path, legs, np.asarray(a_drift, dtype=float)))
         return ends_in_time
+
+    def fits(self, evaluation: PlanEvaluation) -> bool:
+        """The plan ends by T_max and no transfer is shorter than T_min (true model)."""
+        return evaluation.end_day <= self.mission.tmax_days + 1e-6 and bool(
+            np.all(evaluation.duration_days >= self.mission.min_transfer_days - 1e-6)
+        )
 
     def total(self, path, evaluation) -> float:
         """Total ΔV of a plan: its transfers plus the operations at its debris [m/s]."""
@@ -506,9 +510,7 @@ class _Driver:
                 continue
             dv_true = float(evaluation.dv_mps.sum())
             changed = path != last_path
-            late = evaluation.end_day > self.mission.tmax_days + 1e-6 or bool(
-                np.any(evaluation.duration_days < self.mission.min_transfer_days - 1e-6)
-            )
+            late = not self.fits(evaluation)
             stalled = not changed and abs(last_dv - dv_true) <= self.settings.dv_tol_mps
             if late and last_path is not None and pending is None and not stalled:
                 # the linear durations under-estimated (date cross terms): reject the step
@@ -589,28 +591,18 @@ class _Driver:
             for _, path, legs in ranked[:count]:
                 candidates.setdefault(path, legs)
         a_ref = kept["drift_a_km"].to_numpy(dtype=float) * 1e3
-
-        def estimate(path, legs, quick):
-            return reoptimize(
-                self.orbits, path, g.side[legs], g.inc_drift[legs], a_ref[legs],
-                tmax_days=self.mission.tmax_days, deorbit_days=self.nodes.deorbit_days,
-                a_low=g.a_low, a_high=g.a_high, j2=self.mission.j2,
-                inclination=self.mission.drift_inclination,
-                min_days=self.mission.min_transfer_days, polish=not quick,
-                bisection_steps=SEED_BISECTION_STEPS if quick else BISECTION_STEPS,
-            )  # fmt: skip
-
         # a quick estimate of every candidate, then the full re-optimisation of the best
         fits = []
         for path, legs in candidates.items():
             path, legs = list(path), list(legs)
-            final = estimate(path, legs, quick=True)
+            final = self.true_optimum(path, legs, a_ref[legs], polish=False,
+                                      bisection_steps=SEED_BISECTION_STEPS)  # fmt: skip
             if self.bound_by(path, legs, final.a_drift, final.evaluation):
                 fits.append((self.total(path, final.evaluation), path, legs))
         held = None
         if fits:
             _, path, legs = min(fits)
-            final = estimate(path, legs, quick=False)
+            final = self.true_optimum(path, legs, a_ref[legs])
             if self.bound_by(path, legs, final.a_drift, final.evaluation):
                 held = (legs, final)
         self.timings["seed_s"] = time.perf_counter() - start
@@ -618,32 +610,36 @@ class _Driver:
             # the held plan's copies take its sides, inclinations, radii and dates: the
             # first MILP is linearised around it and can start from it
             legs, final = held
-            side, inc = g.side.copy(), g.inc_drift.copy()
-            side[legs], inc[legs] = final.side, final.inc_drift
-            self.geometry = g._replace(side=side, inc_drift=inc)
+            self.adopt(legs, final)
             self.set_references(legs, final.a_drift, final.evaluation.departure_day)
-            ids = self.catalog.ids
-            shown = "->".join(ids[k] for k in self.upper[1][0])
+            shown = "->".join(self.id_path(self.upper[1][0]))
             self.notes.append(
                 f"held before the first MILP: {shown} at {self.upper[0]:.1f} m/s (cheapest of "
                 f"{len(candidates)} paths re-optimised); {int((~self.undominated()).sum())} of "
                 f"{len(kept)} edge copies dominated"
             )
 
+    def true_optimum(self, path, legs, a_start, **options):
+        """:func:`~sdc_cvx.reoptimize.reoptimize` of ``path`` from the copies' assumptions."""
+        g = self.geometry
+        return reoptimize(
+            self.orbits, path, g.side[legs], g.inc_drift[legs], a_start,
+            tmax_days=self.mission.tmax_days, deorbit_days=self.nodes.deorbit_days,
+            a_low=g.a_low, a_high=g.a_high, j2=self.mission.j2,
+            inclination=self.mission.drift_inclination,
+            min_days=self.mission.min_transfer_days, **options,
+        )  # fmt: skip
+
+    def adopt(self, legs, final):
+        """The copies ``legs`` take the sides and drift inclinations of a re-optimised plan."""
+        side, inc = self.geometry.side.copy(), self.geometry.inc_drift.copy()
+        side[legs], inc[legs] = final.side, final.inc_drift
+        self.geometry = self.geometry._replace(side=side, inc_drift=inc)
+
     def reoptimize(self, path, legs, a_legs):
         start = time.perf_counter()
-        geometry = self.geometry
-        final = reoptimize(
-            self.orbits, path, geometry.side[legs], geometry.inc_drift[legs], a_legs,
-            tmax_days=self.mission.tmax_days, deorbit_days=self.nodes.deorbit_days,
-            a_low=geometry.a_low, a_high=geometry.a_high, j2=self.mission.j2,
-            inclination=self.mission.drift_inclination,
-            min_days=self.mission.min_transfer_days,
-        )  # fmt: skip
-        # the chosen copies take the re-optimised sides and inclinations (confirming MILP)
-        side, inc = geometry.side.copy(), geometry.inc_drift.copy()
-        side[legs], inc[legs] = final.side, final.inc_drift
-        self.geometry = geometry._replace(side=side, inc_drift=inc)
+        final = self.true_optimum(path, legs, a_legs)
+        self.adopt(legs, final)  # the confirming MILP linearises around this plan
         self.timings["reoptimize_s"] = self.timings.get("reoptimize_s", 0.0) + (
             time.perf_counter() - start
         )

@@ -16,7 +16,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pytest
 
-from sdc_cvx import backends
 from sdc_cvx.backends import (
     BACKENDS,
     SolverOptions,
@@ -234,18 +233,11 @@ def test_fallback_after_a_failed_result_check(monkeypatch):
     assert message.endswith("; used HIGHS")
 
 
-def test_fallback_after_a_backend_that_raises(monkeypatch):
+def test_fallback_after_a_backend_that_raises(crash_backend):
     instance = BY_NAME["N7-n3-deorbit-binding"]
     best, _ = instance.enumerate()
     model = instance.model()
-    real = backends.solve_milp
-
-    def broken(problem, options, *, warm_start=False):
-        if options.backend == "SCIP":
-            raise RuntimeError("simulated crash")
-        return real(problem, options, warm_start=warm_start)
-
-    monkeypatch.setattr(backends, "solve_milp", broken)
+    crash_backend("SCIP")
     report = solve_with_fallback(model.problem, [SolverOptions(backend="SCIP"), SolverOptions()])
     assert report.backend == "HIGHS" and report.objective == pytest.approx(best, rel=REL)
     assert report.fallbacks == ("SCIP failed: error: RuntimeError: simulated crash; used HIGHS",)

@@ -176,19 +176,11 @@ def test_two_half_segment_duration_model_reaches_the_same_plan(paper_solution):
     check_legs_against_physics(sol, Catalog.paper_case(), Mission())
 
 
-def test_a_failing_first_backend_falls_back_and_says_so(paper_solution, monkeypatch):
+def test_a_failing_first_backend_falls_back_and_says_so(paper_solution, crash_backend):
     """Issue 6: the first backend of the chain crashes; the run finishes on the next one."""
-    import sdc_cvx.backends as backends
     from sdc_cvx import SolverOptions
 
-    real = backends.solve_milp
-
-    def crashing_scipy(problem, options, *, warm_start=False):
-        if options.backend == "SCIPY":
-            raise RuntimeError("simulated crash")
-        return real(problem, options, warm_start=warm_start)
-
-    monkeypatch.setattr(backends, "solve_milp", crashing_scipy)
+    crash_backend("SCIPY")
     sol = solve(solver=SolverOptions(backend="SCIPY", fallback=("HIGHS",)))
     assert sol.path == paper_solution.path
     assert sol.total_dv_mps == pytest.approx(paper_solution.total_dv_mps, abs=0.5)

@@ -1,0 +1,22 @@
+"""Fixtures shared by several test modules."""
+
+import pytest
+
+from sdc_cvx import backends
+
+
+@pytest.fixture
+def crash_backend(monkeypatch):
+    """``crash_backend(NAME)``: every solve by backend NAME raises, the others run as usual."""
+
+    def crash(name):
+        real = backends.solve_milp
+
+        def solve_milp(problem, options, *, warm_start=False):
+            if options.backend == name:
+                raise RuntimeError("simulated crash")
+            return real(problem, options, warm_start=warm_start)
+
+        monkeypatch.setattr(backends, "solve_milp", solve_milp)
+
+    return crash
