@@ -10,7 +10,7 @@ cannot take the others with it and every run pays the same start-up.  The catalo
 N debris are the first N of a seeded permutation of the GTOC9 set
 (``../shared/data/gtoc9/debris_data.txt``, RAANs at its latest epoch), so each size
 contains the smaller ones; ``--source synthetic`` uses
-``sdc_cvx.synthetic.sso_catalog(N, seed)`` instead.  Each is written to a temporary CSV
+``sdc_cvx.inputs.synthetic.sso_catalog(N, seed)`` instead.  Each is written to a temporary CSV
 (20 and 40 debris; ``--large`` adds 80 and 123, the whole GTOC9 set).  Writes
 ``compare_backends.csv`` (backend, case, N, seconds end to end, total nodes, iterations,
 final dV, path, status, ...) and ``compare_backends.png`` to ``--out``, and prints a
@@ -40,12 +40,13 @@ from pathlib import Path
 import cvxpy as cp
 import numpy as np
 
-from sdc_cvx import backends, sequential
-from sdc_cvx.backends import SolverOptions, installed_backends, solve_milp
-from sdc_cvx.catalog import Catalog
-from sdc_cvx.mission import Mission
-from sdc_cvx.readers import read_catalog
-from sdc_cvx.synthetic import sso_catalog
+from sdc_cvx.inputs.catalog import Catalog
+from sdc_cvx.inputs.formats import read_catalog
+from sdc_cvx.inputs.mission import Mission
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.milp import backends
+from sdc_cvx.milp.backends import SolverOptions, installed_backends, solve_milp
+from sdc_cvx.planner import sequential
 
 GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
 

@@ -12,7 +12,7 @@ import argparse
 import time
 
 from sdc_cvx import Catalog, Mission, SequentialSettings, solve
-from sdc_cvx.synthetic import sso_catalog
+from sdc_cvx.inputs.synthetic import sso_catalog
 
 
 def main():

@@ -8,7 +8,7 @@ import argparse
 import time
 
 from sdc_cvx import Catalog, Mission, preoptimize
-from sdc_cvx.synthetic import sso_catalog
+from sdc_cvx.inputs.synthetic import sso_catalog
 
 
 def best_time(catalog, mission, repeat):

@@ -24,9 +24,9 @@ from compare_backends import GTOC9, gtoc9_subset
 from solver_phases import phases
 
 from sdc_cvx import Catalog
-from sdc_cvx.backends import SolverOptions
-from sdc_cvx.readers import read_catalog
-from sdc_cvx.selection import select
+from sdc_cvx.inputs.formats import read_catalog
+from sdc_cvx.inputs.selection import select
+from sdc_cvx.milp.backends import SolverOptions
 
 SSO_RB = GTOC9.parents[1] / "sso_rocket_bodies_2020" / "sso_rb.tle"
 CASES = {

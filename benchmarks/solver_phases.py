@@ -13,9 +13,9 @@ import argparse
 import statistics
 
 from sdc_cvx import Catalog, Mission
-from sdc_cvx.backends import SolverOptions
-from sdc_cvx.sequential import solve
-from sdc_cvx.synthetic import sso_catalog
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.milp.backends import SolverOptions
+from sdc_cvx.planner.sequential import solve
 
 
 def phases(catalog, solver, mission=None):

@@ -4,13 +4,13 @@ Data flow: :class:`Catalog` + :class:`Mission` -> :func:`preoptimize` (edge tabl
 -> linearisation -> CVXPY model -> sequential driver -> nonlinear re-optimisation.
 """
 
-from .backends import SolverOptions
-from .catalog import Catalog, CatalogError
-from .edges import EdgeTable, preoptimize
-from .mission import Mission, MissionError
-from .sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
+from .inputs.catalog import Catalog, CatalogError
+from .inputs.mission import Mission, MissionError
+from .milp.backends import SolverOptions
+from .network.edges import EdgeTable, preoptimize
+from .planner.sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
 from .solution import Solution
-from .sweep import plot_sweep, sweep
+from .study.runner import plot_sweep, sweep
 
 __all__ = [
     "Catalog",

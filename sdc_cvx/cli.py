@@ -17,15 +17,15 @@ import click
 import cvxpy as cp
 import pandas as pd
 
-from .backends import DEFAULT_BACKEND, SolverOptions
-from .catalog import Catalog, CatalogError
-from .edges import preoptimize
-from .mission import MissionError
-from .output import new_run_folder, write_run
-from .scenario import MILP_BACKENDS, Scenario, ScenarioError, Selection, apply_overrides
-from .selection import DEFAULT_MAX_ECCENTRICITY
-from .selection import summary as selection_summary
-from .sequential import MissionInfeasible, SolverFailure, solve
+from .inputs.catalog import Catalog, CatalogError
+from .inputs.mission import MissionError
+from .inputs.selection import DEFAULT_MAX_ECCENTRICITY
+from .inputs.selection import summary as selection_summary
+from .milp.backends import DEFAULT_BACKEND, SolverOptions
+from .network.edges import preoptimize
+from .planner.sequential import MissionInfeasible, SolverFailure, solve
+from .report.run_folder import new_run_folder, write_run
+from .study.scenario import MILP_BACKENDS, Scenario, ScenarioError, Selection, apply_overrides
 
 INPUT_ERROR = 2
 INFEASIBLE = 3
@@ -436,7 +436,7 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     finishes (results.csv and one solution.json per scenario), so --resume after an
     interruption only runs what is missing.
     """
-    from .sweep import SOLVED_STATUSES, SweepError, load_study, run_study  # dask when asked
+    from .study.runner import SOLVED_STATUSES, SweepError, load_study, run_study  # dask when asked
 
     try:
         study = load_study(study_file)

@@ -16,10 +16,10 @@ from typing import NamedTuple
 import numpy as np
 import pandas as pd
 
-from .catalog import Catalog
-from .mission import Mission
-from .orbits import SECONDS_PER_DAY
-from .transfer import NodeOrbits, transfer_duration, transfer_dv
+from .inputs.catalog import Catalog
+from .inputs.mission import Mission
+from .physics.orbits import SECONDS_PER_DAY
+from .physics.transfer import NodeOrbits, transfer_duration, transfer_dv
 
 
 class PlanEvaluation(NamedTuple):

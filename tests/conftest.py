@@ -2,7 +2,7 @@
 
 import pytest
 
-from sdc_cvx import backends
+from sdc_cvx.milp import backends
 
 
 @pytest.fixture

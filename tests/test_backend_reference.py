@@ -16,7 +16,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pytest
 
-from sdc_cvx.backends import (
+from sdc_cvx.milp.backends import (
     BACKENDS,
     SolverOptions,
     Status,
@@ -24,8 +24,8 @@ from sdc_cvx.backends import (
     solve_milp,
     solve_with_fallback,
 )
-from sdc_cvx.linearize import Coefficients
-from sdc_cvx.model import PathModel
+from sdc_cvx.planner.linearize import Coefficients
+from sdc_cvx.planner.model import PathModel
 
 REL = 1e-6
 

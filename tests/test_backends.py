@@ -8,7 +8,7 @@ import cvxpy as cp
 import numpy as np
 import pytest
 
-from sdc_cvx.backends import (
+from sdc_cvx.milp.backends import (
     BACKENDS,
     DEFAULT_BACKEND,
     MILP_BACKENDS,

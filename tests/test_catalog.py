@@ -1,4 +1,4 @@
-"""Tests of sdc_cvx.catalog: the paper's Table 5, validation messages, epochs, subsets."""
+"""Tests of sdc_cvx.inputs.catalog: the paper's Table 5, validation messages, epochs, subsets."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from sdc_cvx.catalog import Catalog, CatalogError
+from sdc_cvx.inputs.catalog import Catalog, CatalogError
 
 # Paper Table 5: id -> (a km, e, inc deg, initial RAAN deg), typed in from the paper.
 TABLE5 = {

@@ -12,8 +12,8 @@ from click.testing import CliRunner
 
 from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.cli import main
-from sdc_cvx.readers import read_gtoc9
-from sdc_cvx.scenario import Selection, load
+from sdc_cvx.inputs.formats import read_gtoc9
+from sdc_cvx.study.scenario import Selection, load
 
 PAPER_CSV = Path(__file__).resolve().parents[1] / "sdc_cvx" / "data" / "paper_table5.csv"
 GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"

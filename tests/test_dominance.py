@@ -6,16 +6,16 @@ import numpy as np
 import pytest
 
 from sdc_cvx import Mission
-from sdc_cvx.dominance import (
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.network.dominance import (
     FLOOR_MARGIN_MPS,
     cheapest_paths,
     path_cost_floor,
     transfer_dv_floor,
 )
-from sdc_cvx.edges import drift_radius_bounds, node_orbits
-from sdc_cvx.orbits import SECONDS_PER_DAY
-from sdc_cvx.synthetic import sso_catalog
-from sdc_cvx.transfer import cheapest_transfer, transfer_dv
+from sdc_cvx.network.edges import drift_radius_bounds, node_orbits
+from sdc_cvx.physics.orbits import SECONDS_PER_DAY
+from sdc_cvx.physics.transfer import cheapest_transfer, transfer_dv
 
 
 @pytest.fixture(scope="module")

@@ -5,9 +5,9 @@ import pandas as pd
 import pytest
 
 from sdc_cvx import Catalog, Mission, preoptimize
-from sdc_cvx.edges import KEPT, TOO_COSTLY, TOO_SLOW
-from sdc_cvx.orbits import R_EARTH, SECONDS_PER_DAY
-from sdc_cvx.transfer import NodeOrbits, transfer_duration, transfer_dv
+from sdc_cvx.network.edges import KEPT, TOO_COSTLY, TOO_SLOW
+from sdc_cvx.physics.orbits import R_EARTH, SECONDS_PER_DAY
+from sdc_cvx.physics.transfer import NodeOrbits, transfer_duration, transfer_dv
 
 # Table 6: leg, departure day, drift a [km], drift inc [deg], dv [m/s] (61-day transfers)
 TABLE_6 = [

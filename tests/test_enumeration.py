@@ -2,7 +2,7 @@
 
 The brute force below enumerates every ordered path of n debris and, for each, searches
 the drift orbits of every leg on a radius grid with the true physics (Eq. 7-13 through
-``sdc_cvx.transfer``): no linearisation, no MILP, no re-optimisation, nothing from the
+``sdc_cvx.physics.transfer``): no linearisation, no MILP, no re-optimisation, nothing from the
 code under test (``sequential``, ``model``, ``linearize``, ``reoptimize``, ``edges``,
 ``solution``).  The model is the solver's: the vehicle is at the first debris at t = 0,
 each leg leaves as soon as the previous one arrives (T_deorb = 0), each drift orbit is
@@ -46,8 +46,8 @@ import pandas as pd
 import pytest
 
 from sdc_cvx import Catalog, Mission
-from sdc_cvx.orbits import R_EARTH, SECONDS_PER_DAY
-from sdc_cvx.transfer import NodeOrbits, drift_inclination, transfer_duration, transfer_dv
+from sdc_cvx.physics.orbits import R_EARTH, SECONDS_PER_DAY
+from sdc_cvx.physics.transfer import NodeOrbits, drift_inclination, transfer_duration, transfer_dv
 
 DAY = SECONDS_PER_DAY
 A_LOW, A_HIGH = R_EARTH + 400e3, R_EARTH + 1200e3  # Mission's default drift altitude band
@@ -517,7 +517,7 @@ def solver_plan_checked(sol, catalog_: Catalog, tmax) -> list[bool]:
 
 @pytest.mark.parametrize("case", SOLVER_PARAMS)
 def test_solver_finds_the_enumerated_optimum(case):
-    from sdc_cvx.sequential import MissionInfeasible, solve
+    from sdc_cvx.planner.sequential import MissionInfeasible, solve
 
     en = enumeration(case)
     reference, free = en.plans["table3"][0], en.plans["free"][0]

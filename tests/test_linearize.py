@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from sdc_cvx import Catalog, Mission, preoptimize
-from sdc_cvx.linearize import TrustRegion, linearize
-from sdc_cvx.sequential import edge_geometry
-from sdc_cvx.synthetic import sso_catalog
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.planner.linearize import TrustRegion, linearize
+from sdc_cvx.planner.sequential import edge_geometry
 
 
 @pytest.fixture(scope="module", params=["paper", "synthetic"])

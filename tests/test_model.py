@@ -4,10 +4,10 @@ import cvxpy as cp
 import numpy as np
 import pytest
 
-from sdc_cvx.backends import SolverOptions, solve_milp
-from sdc_cvx.linearize import Coefficients
-from sdc_cvx.model import ModelSize, PathModel
-from sdc_cvx.sequential import read_path
+from sdc_cvx.milp.backends import SolverOptions, solve_milp
+from sdc_cvx.planner.linearize import Coefficients
+from sdc_cvx.planner.model import ModelSize, PathModel
+from sdc_cvx.planner.sequential import read_path
 
 
 def coefficients(costs, durations=None, tmax=100.0):

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from sdc_cvx import Catalog, Mission, MissionError, MissionInfeasible, solve
-from sdc_cvx.orbits import R_EARTH, SECONDS_PER_DAY
-from sdc_cvx.transfer import NodeOrbits, transfer_duration, transfer_dv
+from sdc_cvx.physics.orbits import R_EARTH, SECONDS_PER_DAY
+from sdc_cvx.physics.transfer import NodeOrbits, transfer_duration, transfer_dv
 
 MU = 3.986e14
 PAPER = Catalog.paper_case()

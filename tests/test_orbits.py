@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from sdc_cvx.orbits import (
+from sdc_cvx.physics.orbits import (
     MU_EARTH,
     R_EARTH,
     SECONDS_PER_DAY,

@@ -11,7 +11,8 @@ from matplotlib.figure import Figure
 from matplotlib.image import imread
 
 from sdc_cvx import Catalog, solve
-from sdc_cvx.plots import (
+from sdc_cvx.physics.transfer import NodeOrbits
+from sdc_cvx.report.plots import (
     FIGURE_NAMES,
     plot_cost,
     plot_iterations,
@@ -20,7 +21,6 @@ from sdc_cvx.plots import (
     save_figures,
 )
 from sdc_cvx.solution import Leg, evaluate_plan
-from sdc_cvx.transfer import NodeOrbits
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 MU = 3.986e14

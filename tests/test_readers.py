@@ -19,10 +19,10 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from sdc_cvx.catalog import CatalogError
 from sdc_cvx.cli import main
-from sdc_cvx.readers import read_catalog, read_gtoc9, read_omm, read_tle, sniff_format
-from sdc_cvx.scenario import load
+from sdc_cvx.inputs.catalog import CatalogError
+from sdc_cvx.inputs.formats import read_catalog, read_gtoc9, read_omm, read_tle, sniff_format
+from sdc_cvx.study.scenario import load
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 SSO_TLE = "sso_rocket_bodies_2020/sso_rb.tle"

@@ -9,8 +9,8 @@ import pandas as pd
 import pytest
 
 from sdc_cvx import Catalog, Mission, SolverOptions
-from sdc_cvx.catalog import CatalogError
-from sdc_cvx.scenario import (
+from sdc_cvx.inputs.catalog import CatalogError
+from sdc_cvx.study.scenario import (
     CATALOG_FORMATS,
     Scenario,
     ScenarioError,
@@ -414,7 +414,7 @@ def test_start_and_selection_overrides(tmp_path, debris_csv):
 
 
 def test_max_eccentricity_may_be_infinite(tmp_path):
-    """``inf`` keeps every eccentricity, as :func:`sdc_cvx.selection.select` allows."""
+    """``inf`` keeps every eccentricity, as :func:`sdc_cvx.inputs.selection.select` allows."""
     scenario = load(write(tmp_path, "[selection]\nmax_eccentricity = inf\n"))
     assert scenario.selection.max_eccentricity == float("inf")
     assert "\nmax_eccentricity = inf\n" in scenario.to_toml()

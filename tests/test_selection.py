@@ -9,10 +9,10 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from sdc_cvx.catalog import Catalog
 from sdc_cvx.cli import main
-from sdc_cvx.readers import read_tle
-from sdc_cvx.selection import select, summary
+from sdc_cvx.inputs.catalog import Catalog
+from sdc_cvx.inputs.formats import read_tle
+from sdc_cvx.inputs.selection import select, summary
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 R_T_KM = 6378.137

@@ -7,10 +7,10 @@ import pandas as pd
 import pytest
 
 from sdc_cvx import Catalog, Mission
-from sdc_cvx.orbits import SECONDS_PER_DAY
-from sdc_cvx.sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
-from sdc_cvx.synthetic import sso_catalog
-from sdc_cvx.transfer import NodeOrbits, transfer_duration, transfer_dv
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.physics.orbits import SECONDS_PER_DAY
+from sdc_cvx.physics.transfer import NodeOrbits, transfer_duration, transfer_dv
+from sdc_cvx.planner.sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
 
 # Table 7 of the paper: iteration, path, dV [m/s], duration [days]
 TABLE_7 = [
@@ -109,14 +109,14 @@ def test_more_debris_than_candidates_is_an_error():
 
 
 def no_incumbent(problem, chain, warm_start=False):
-    from sdc_cvx.backends import SolveReport, Status
+    from sdc_cvx.milp.backends import SolveReport, Status
 
     return SolveReport(Status.NO_SOLUTION, None, None, None, 0, 0.1, 0.0, "HIGHS", "time limit")
 
 
 def test_time_limit_without_incumbent_is_not_a_solution(monkeypatch):
     """A backend that stops before any incumbent must surface as a failure, not zeros."""
-    import sdc_cvx.sequential as sequential
+    import sdc_cvx.planner.sequential as sequential
 
     monkeypatch.setattr(sequential, "solve_with_fallback", no_incumbent)
     catalog = sso_catalog(14, seed=3, raan_span_deg=40.0)
@@ -127,7 +127,7 @@ def test_time_limit_without_incumbent_is_not_a_solution(monkeypatch):
 def test_time_limit_without_incumbent_returns_the_plan_held_and_says_so(monkeypatch):
     """With a plan held before the first MILP (seed paths), a MILP stopped empty-handed
     ends the run on that plan, with its own status, instead of losing it."""
-    import sdc_cvx.sequential as sequential
+    import sdc_cvx.planner.sequential as sequential
 
     monkeypatch.setattr(sequential, "solve_with_fallback", no_incumbent)
     catalog = sso_catalog(14, seed=3, raan_span_deg=40.0)  # dates matter: seeds are used

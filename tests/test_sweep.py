@@ -13,8 +13,6 @@ from pathlib import Path
 import pandas as pd
 import pytest
 from matplotlib.figure import Figure
-
-from sdc_cvx.scenario import Scenario, ScenarioError
 from sdc_cvx.sweep import (
     RESULT_COLUMNS,
     Study,
@@ -26,6 +24,8 @@ from sdc_cvx.sweep import (
     solve_scenario,
     sweep,
 )
+
+from sdc_cvx.study.scenario import Scenario, ScenarioError
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 STUDY = """\

@@ -5,8 +5,8 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from sdc_cvx.orbits import R_EARTH, SECONDS_PER_DAY, hohmann_dv, raan_rate
-from sdc_cvx.transfer import (
+from sdc_cvx.physics.orbits import R_EARTH, SECONDS_PER_DAY, hohmann_dv, raan_rate
+from sdc_cvx.physics.transfer import (
     NodeOrbits,
     cheapest_transfer,
     drift_a_for_duration,

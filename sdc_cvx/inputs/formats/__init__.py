@@ -46,8 +46,8 @@ import pandas as pd
 from sgp4 import omm
 from sgp4.api import SGP4_ERRORS, Satrec
 
-from .catalog import R_EARTH_KM, Catalog, CatalogError, read_text
-from .orbits import MU_EARTH
+from ...physics.orbits import MU_EARTH
+from ..catalog import R_EARTH_KM, Catalog, CatalogError, read_text
 
 __all__ = [
     "FORMATS",
@@ -894,7 +894,7 @@ def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=No
     """
     source = os.fspath(path)
     if format is None:
-        from .scenario import EXTENSION_FORMATS  # scenario imports this module
+        from ...study.scenario import EXTENSION_FORMATS  # scenario imports this module
 
         format = sniff_format(path) or EXTENSION_FORMATS.get(Path(source).suffix.lower())
         if format is None and Path(source).is_file():

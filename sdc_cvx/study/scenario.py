@@ -56,11 +56,11 @@ from pathlib import Path
 
 import tomli_w
 
-from .backends import SolverOptions
-from .catalog import Catalog
-from .mission import Mission, MissionError
-from .readers import read_gtoc9, read_omm, read_tle
-from .selection import DEFAULT_MAX_ECCENTRICITY, select
+from ..inputs.catalog import Catalog
+from ..inputs.formats import read_gtoc9, read_omm, read_tle
+from ..inputs.mission import Mission, MissionError
+from ..inputs.selection import DEFAULT_MAX_ECCENTRICITY, select
+from ..milp.backends import SolverOptions
 
 __all__ = [
     "CATALOG_FORMATS",

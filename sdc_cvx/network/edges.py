@@ -13,10 +13,10 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .catalog import Catalog
-from .mission import Mission
-from .orbits import R_EARTH, SECONDS_PER_DAY
-from .transfer import NodeOrbits, cheapest_transfer
+from ..inputs.catalog import Catalog
+from ..inputs.mission import Mission
+from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
+from ..physics.transfer import NodeOrbits, cheapest_transfer
 
 KEPT = "kept"
 TOO_SLOW = "too_slow"

@@ -10,7 +10,7 @@ import dataclasses
 import numbers
 from dataclasses import dataclass
 
-from .orbits import J2, R_EARTH
+from ..physics.orbits import J2, R_EARTH
 
 DRIFT_INCLINATION_RULES = ("table3", "free")
 

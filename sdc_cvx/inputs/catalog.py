@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
+from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
 
 __all__ = [
     "DERIVED_COLUMNS",

@@ -22,10 +22,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import minimize
 
-from .linearize import KM
-from .orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
-from .solution import PlanEvaluation, evaluate_plan
-from .transfer import (
+from ..physics.orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
+from ..physics.transfer import (
     NodeOrbits,
     drift_inclination,
     drift_rate,
@@ -35,6 +33,8 @@ from .transfer import (
     transfer_duration,
     transfer_dv,
 )
+from ..solution import PlanEvaluation, evaluate_plan
+from .linearize import KM
 
 ASYMPTOTE_MARGIN = 1e-6  # relative distance kept from the asymptote
 BISECTION_STEPS = 25

@@ -7,10 +7,10 @@ import tempfile
 from datetime import datetime
 from pathlib import Path
 
-from .catalog import Catalog
-from .edges import EdgeTable
+from ..inputs.catalog import Catalog
+from ..network.edges import EdgeTable
+from ..solution import Solution
 from .plots import save_figures
-from .solution import Solution
 
 
 def write_atomic(path: Path, text: str) -> None:

@@ -70,9 +70,9 @@ import numpy as np
 import pandas as pd
 import tomli_w
 
-from .output import new_run_folder, write_atomic
+from ..planner.sequential import MissionInfeasible, SolverFailure, solve
+from ..report.run_folder import new_run_folder, write_atomic
 from .scenario import Scenario, ScenarioError, read_toml
-from .sequential import MissionInfeasible, SolverFailure, solve
 
 __all__ = [
     "FAILURE_STATUSES",

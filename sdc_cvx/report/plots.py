@@ -29,10 +29,10 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator
 
-from .catalog import Catalog
-from .orbits import R_EARTH, SECONDS_PER_DAY
-from .solution import Leg, Solution
-from .transfer import NodeOrbits, drift_rate
+from ..inputs.catalog import Catalog
+from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
+from ..physics.transfer import NodeOrbits, drift_rate
+from ..solution import Leg, Solution
 
 __all__ = [
     "FIGURE_NAMES",

@@ -23,8 +23,8 @@ import heapq
 
 import numpy as np
 
-from .orbits import MU_EARTH
-from .transfer import NodeOrbits, minimize_on_interval, transfer_dv
+from ..physics.orbits import MU_EARTH
+from ..physics.transfer import NodeOrbits, minimize_on_interval, transfer_dv
 
 FLOOR_MARGIN_MPS = 0.01
 """Subtracted from each transfer floor [m/s]: covers the 1-D search's tolerance."""

@@ -29,17 +29,17 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
-from .backends import SolveReport, SolverOptions, Status, chain_of, solve_with_fallback
-from .catalog import Catalog
-from .dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
-from .edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
+from ..inputs.catalog import Catalog
+from ..inputs.mission import Mission
+from ..milp.backends import SolveReport, SolverOptions, Status, chain_of, solve_with_fallback
+from ..network.dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
+from ..network.edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
+from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
+from ..physics.transfer import cheapest_transfer
+from ..solution import IterationRecord, Leg, PlanEvaluation, Solution, evaluate_plan
 from .linearize import EdgeGeometry, TrustRegion, linearize
-from .mission import Mission
 from .model import ModelSize, PathModel
-from .orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
 from .reoptimize import reoptimize
-from .solution import IterationRecord, Leg, PlanEvaluation, Solution, evaluate_plan
-from .transfer import cheapest_transfer
 
 INJECTION_ID = "injection"
 FROZEN_GAP_DEG = 0.1

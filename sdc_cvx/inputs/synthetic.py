@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..physics.orbits import J2, MU_EARTH, R_EARTH, SECONDS_PER_DAY
 from .catalog import Catalog
-from .orbits import J2, MU_EARTH, R_EARTH, SECONDS_PER_DAY
 
 SUN_SYNCHRONOUS_RATE = 2.0 * np.pi / (365.2422 * SECONDS_PER_DAY)
 """RAAN rate of a sun-synchronous orbit [rad/s] (360 deg per tropical year)."""

@@ -1,0 +1,1 @@
+"""Inputs: the debris catalog and its file formats, the mission, candidate selection."""

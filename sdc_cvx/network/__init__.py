@@ -1,0 +1,1 @@
+"""Network: the pre-optimised edge table between debris and its dominance bounds."""

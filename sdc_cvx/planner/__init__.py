@@ -1,0 +1,1 @@
+"""Planner: linearisation, the CVXPY path model, the sequential driver, the re-optimisation."""

@@ -1,0 +1,1 @@
+"""Study: scenario files, parameter studies (sweeps), their worker, runner and results."""
