@@ -44,8 +44,10 @@ from sdc_cvx.inputs.catalog import Catalog
 from sdc_cvx.inputs.formats import read_catalog
 from sdc_cvx.inputs.mission import Mission
 from sdc_cvx.inputs.synthetic import sso_catalog
-from sdc_cvx.milp import backends
-from sdc_cvx.milp.backends import SolverOptions, installed_backends, solve_milp
+from sdc_cvx.milp import solve as milp_solve
+from sdc_cvx.milp.backends import installed_backends
+from sdc_cvx.milp.solve import solve_milp
+from sdc_cvx.milp.types import SolverOptions
 from sdc_cvx.planner import sequential
 
 GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
@@ -295,7 +297,7 @@ def modelling_cost(name: str, problem: cp.Problem, folder: Path, repeats=5) -> d
 def _constant(problem: cp.Problem) -> float:
     """The objective constant CVXPY keeps out of the exported model."""
     _, _, inverse = problem.get_problem_data("HIGHS")
-    return backends._offset(inverse)
+    return milp_solve._offset(inverse)
 
 
 def print_modelling(results):

@@ -26,7 +26,7 @@ from solver_phases import phases
 from sdc_cvx import Catalog
 from sdc_cvx.inputs.formats import read_catalog
 from sdc_cvx.inputs.selection import select
-from sdc_cvx.milp.backends import SolverOptions
+from sdc_cvx.milp.types import SolverOptions
 
 SSO_RB = GTOC9.parents[1] / "sso_rocket_bodies_2020" / "sso_rb.tle"
 CASES = {

@@ -2,15 +2,35 @@
 
 Data flow: :class:`Catalog` + :class:`Mission` -> :func:`preoptimize` (edge table)
 -> linearisation -> CVXPY model -> sequential driver -> nonlinear re-optimisation.
+
+The names below are imported when first used (a module-level ``__getattr__``), so
+``import sdc_cvx`` loads neither CVXPY nor matplotlib nor the sweep machinery.  The
+subpackages follow the pipeline: ``physics``, ``inputs``, ``network``, ``milp``,
+``planner``, ``solution``, ``study``, ``report`` (see the README's "Layout").
 """
 
-from .inputs.catalog import Catalog, CatalogError
-from .inputs.mission import Mission, MissionError
-from .milp.backends import SolverOptions
-from .network.edges import EdgeTable, preoptimize
-from .planner.sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
-from .solution import Solution
-from .study.runner import plot_sweep, sweep
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING
+
+_EXPORTS = {
+    "Catalog": "sdc_cvx.inputs.catalog",
+    "CatalogError": "sdc_cvx.errors",
+    "EdgeTable": "sdc_cvx.network.edges",
+    "Mission": "sdc_cvx.inputs.mission",
+    "MissionError": "sdc_cvx.errors",
+    "MissionInfeasible": "sdc_cvx.errors",
+    "SequentialSettings": "sdc_cvx.planner.sequential",
+    "Solution": "sdc_cvx.solution",
+    "SolverFailure": "sdc_cvx.errors",
+    "SolverOptions": "sdc_cvx.milp.types",
+    "plot_sweep": "sdc_cvx.study.figure",
+    "preoptimize": "sdc_cvx.network.edges",
+    "solve": "sdc_cvx.planner.sequential",
+    "sweep": "sdc_cvx.study.runner",
+}
+"""Each public name and the module it comes from."""
 
 __all__ = [
     "Catalog",
@@ -29,3 +49,27 @@ __all__ = [
     "sweep",
 ]
 __version__ = "0.1.0"
+
+if TYPE_CHECKING:
+    from .errors import CatalogError, MissionError, MissionInfeasible, SolverFailure
+    from .inputs.catalog import Catalog
+    from .inputs.mission import Mission
+    from .milp.types import SolverOptions
+    from .network.edges import EdgeTable, preoptimize
+    from .planner.sequential import SequentialSettings, solve
+    from .solution import Solution
+    from .study.figure import plot_sweep
+    from .study.runner import sweep
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'sdc_cvx' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # the next access does not come here
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_EXPORTS])

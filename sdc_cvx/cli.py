@@ -8,43 +8,52 @@ mission, 4 solver failure.
 from __future__ import annotations
 
 import importlib.metadata
-import importlib.util
 import sys
 from functools import partial
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
-import cvxpy as cp
-import pandas as pd
 
-from .inputs.catalog import Catalog, CatalogError
-from .inputs.mission import MissionError
-from .inputs.selection import DEFAULT_MAX_ECCENTRICITY
-from .inputs.selection import summary as selection_summary
-from .milp.backends import DEFAULT_BACKEND, SolverOptions
-from .network.edges import preoptimize
-from .planner.sequential import MissionInfeasible, SolverFailure, solve
-from .report.run_folder import new_run_folder, write_run
-from .study.scenario import MILP_BACKENDS, Scenario, ScenarioError, Selection, apply_overrides
+from .errors import (
+    CatalogError,
+    InputError,
+    MissionError,
+    MissionInfeasible,
+    ScenarioError,
+    SdcError,
+    SolverFailure,
+    SweepError,
+)
+from .milp.types import BACKENDS, DEFAULT_BACKEND, package_version
+from .physics.orbits import DEFAULT_MAX_ECCENTRICITY
+
+if TYPE_CHECKING:  # the commands import what they use: --help stays light
+    import pandas as pd
+
+    from .inputs.catalog import Catalog
+    from .milp.types import SolverOptions
+    from .study.scenario import Scenario, Selection
 
 INPUT_ERROR = 2
 INFEASIBLE = 3
 SOLVER_FAILED = 4
+EXIT_CODES: dict[type[SdcError], int] = {
+    InputError: INPUT_ERROR,  # CatalogError, MissionError, ScenarioError
+    SweepError: INPUT_ERROR,
+    MissionInfeasible: INFEASIBLE,
+    SolverFailure: SOLVER_FAILED,
+}
+"""Exit code of each family of :mod:`sdc_cvx.errors` (0 is success)."""
 MAX_DROPPED_SHOWN = 20
 
-SOLVER_PACKAGES = {
-    "HIGHS": "highspy",
-    "SCIP": "pyscipopt",
-    "CBC": "cylp",
-    "GLPK_MI": "cvxopt",
-    "SCIPY": "scipy",
-    "GUROBI": "gurobipy",
-    "CPLEX": "cplex",
-    "XPRESS": "xpress",
-    "MOSEK": "mosek",
-    "COPT": "coptpy",
-}
-"""Python package behind each MILP backend that CVXPY can call."""
+
+def exit_code(err: SdcError) -> int:
+    """The exit code of an error's family (:data:`EXIT_CODES`)."""
+    for family, code in EXIT_CODES.items():
+        if isinstance(err, family):
+            return code
+    return INPUT_ERROR
 
 
 def fail(message: str, code: int = INPUT_ERROR):
@@ -55,6 +64,8 @@ def fail(message: str, code: int = INPUT_ERROR):
 
 def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
     """The scenario file (or the paper case) with the command-line values applied."""
+    from .study.scenario import Scenario, apply_overrides
+
     try:
         scenario = Scenario() if scenario_file is None else Scenario.load(scenario_file)
         return apply_overrides(scenario, overrides, origin="command line")
@@ -72,13 +83,15 @@ def read_catalog(scenario: Scenario) -> Catalog:
 
 def check_backend(solver: SolverOptions) -> None:
     """Exit 2 unless the chosen backend (or one of its fallbacks) is installed."""
+    import cvxpy as cp
+
     installed = set(cp.installed_solvers())
     usable_chain = [b for b in (solver.backend, *solver.fallback) if b in installed]
     if usable_chain and solver.backend not in installed:
         click.echo(f"warning: {solver.backend} is not installed here; the fallback "
                    f"{usable_chain[0]} will be used", err=True)  # fmt: skip
     if not usable_chain:
-        usable = ", ".join(name for name in MILP_BACKENDS if name in installed) or "none"
+        usable = ", ".join(name for name in BACKENDS if name in installed) or "none"
         fail(
             f"solver.backend {solver.backend!r} is not installed here; installed MILP "
             f"backends: {usable} (see 'sdc-cvx solvers')"
@@ -147,6 +160,9 @@ def select_candidates(catalog: Catalog, selection: Selection, echo) -> tuple[Cat
     ``echo`` gets the "kept K of N candidates (...)" line when a filter is set or a
     debris is dropped (near-polar orbits and e > 0.05 are always dropped).
     """
+    from .inputs.selection import summary as selection_summary
+    from .study.scenario import Selection
+
     try:
         kept, report = selection.apply(catalog)
     except ValueError as err:
@@ -185,6 +201,8 @@ def edges(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_ma
 
     SCENARIO.toml (optional) gives the catalog and mission; the options override it.
     """
+    from .network.edges import preoptimize
+
     scenario = build_scenario(scenario_file, catalog_path=catalog_path,
                               catalog_format=catalog_format, catalog_start=start,
                               preopt_days=preopt_days, dv_max_mps=dv_max_mps)  # fmt: skip
@@ -268,6 +286,11 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     sets a value).  The run folder also gets scenario.toml, the scenario as used.  Exit
     codes: 2 invalid input (nothing written), 3 infeasible mission, 4 solver failure.
     """
+    from .network.edges import preoptimize
+    from .planner.sequential import solve
+    from .report.run_folder import new_run_folder, write_run
+    from .solution import RunStatus
+
     scenario = build_scenario(
         scenario_file, catalog_path=catalog_path, catalog_format=catalog_format,
         catalog_start=start, n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
@@ -297,9 +320,9 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
             catalog, mission, solver=solver, progress=print_iteration if show_progress else None
         )
     except MissionInfeasible as err:
-        fail(f"infeasible mission: {err}", INFEASIBLE)
+        fail(f"infeasible mission: {err}", exit_code(err))
     except SolverFailure as err:
-        fail(f"solver failure: {err}", SOLVER_FAILED)
+        fail(f"solver failure: {err}", exit_code(err))
     edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
     folder = Path(out_dir) if out_dir else None
     try:
@@ -322,13 +345,15 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         if start:
             click.echo(start)
         click.echo(f"results   {folder}/solution.json")
-    if solution.status != "converged":
+    if solution.status is not RunStatus.CONVERGED:
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
 
 
 # ---------------------------------------------------------------------- catalog
 def catalog_table(catalog: Catalog) -> str:
     """The catalog as an aligned text table, in people's units."""
+    import pandas as pd
+
     frame = catalog.frame
     columns = {"id": frame["id"].astype(str)}
     if "name" in frame.columns:
@@ -380,23 +405,15 @@ def catalog_command(file, catalog_format, start, altitude_km, inclination_deg, m
 
 
 # ---------------------------------------------------------------------- solvers
-def package_version(package: str) -> str | None:
-    """Version of an importable package, or None."""
-    try:
-        if importlib.util.find_spec(package) is None:
-            return None
-        return importlib.metadata.version(package)
-    except (ImportError, ValueError, importlib.metadata.PackageNotFoundError):
-        return None
-
-
 @main.command()
 def solvers():
     """List the MILP backends CVXPY can use here, with their package versions."""
+    import cvxpy as cp
+
     installed = set(cp.installed_solvers())
     rows = [("backend", "installed", "package", "version")]
-    for name in MILP_BACKENDS:
-        package = SOLVER_PACKAGES[name]
+    for name, backend in BACKENDS.items():
+        package = backend.module
         rows.append(
             (
                 name + (" *" if name == DEFAULT_BACKEND else ""),
@@ -436,7 +453,10 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     finishes (results.csv and one solution.json per scenario), so --resume after an
     interruption only runs what is missing.
     """
-    from .study.runner import SOLVED_STATUSES, SweepError, load_study, run_study  # dask when asked
+    from .report.run_folder import new_run_folder
+    from .study.results import SOLVED_STATUSES
+    from .study.runner import run_study
+    from .study.study import load_study
 
     try:
         study = load_study(study_file)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import asdict, dataclass, field
+from enum import StrEnum
 from typing import NamedTuple
 
 import numpy as np
@@ -20,6 +21,36 @@ from .inputs.catalog import Catalog
 from .inputs.mission import Mission
 from .physics.orbits import SECONDS_PER_DAY
 from .physics.transfer import NodeOrbits, transfer_duration, transfer_dv
+
+
+class RunStatus(StrEnum):
+    """How a run of the sequential linearisation ended (:attr:`Solution.status`).
+
+    A ``str`` enum: its values are the strings written to ``solution.json`` and
+    ``results.csv``, and a member compares equal to its value (``"converged"``).
+    New outcomes are new members; :attr:`is_solved` says whether a run with that
+    status returned a plan.
+    """
+
+    CONVERGED = "converged"  # the path survived a MILP around its re-optimised point
+    CONVERGED_UNCONFIRMED = "converged_unconfirmed"  # kept changing after max_confirmations
+    ITERATION_LIMIT = "iteration_limit"
+    TIME_LIMIT = "time_limit"  # a MILP stopped at its time limit without a solution
+
+    @property
+    def is_solved(self) -> bool:
+        """A plan came out (every run status so far: failures raise instead)."""
+        return self in _SOLVED
+
+
+_SOLVED = frozenset(
+    {
+        RunStatus.CONVERGED,
+        RunStatus.CONVERGED_UNCONFIRMED,
+        RunStatus.ITERATION_LIMIT,
+        RunStatus.TIME_LIMIT,
+    }
+)
 
 
 class PlanEvaluation(NamedTuple):
@@ -149,7 +180,7 @@ class Solution:
     legs: tuple[Leg, ...]
     total_dv_mps: float
     total_duration_days: float
-    status: str
+    status: RunStatus
     backend: str
     mission: Mission
     iterations: tuple[IterationRecord, ...]

@@ -2,7 +2,7 @@
 
 import pytest
 
-from sdc_cvx.milp import backends
+from sdc_cvx.milp import solve as milp_solve
 
 
 @pytest.fixture
@@ -10,13 +10,13 @@ def crash_backend(monkeypatch):
     """``crash_backend(NAME)``: every solve by backend NAME raises, the others run as usual."""
 
     def crash(name):
-        real = backends.solve_milp
+        real = milp_solve.solve_milp
 
         def solve_milp(problem, options, *, warm_start=False):
             if options.backend == name:
                 raise RuntimeError("simulated crash")
             return real(problem, options, warm_start=warm_start)
 
-        monkeypatch.setattr(backends, "solve_milp", solve_milp)
+        monkeypatch.setattr(milp_solve, "solve_milp", solve_milp)
 
     return crash

@@ -8,18 +8,9 @@ import cvxpy as cp
 import numpy as np
 import pytest
 
-from sdc_cvx.milp.backends import (
-    BACKENDS,
-    DEFAULT_BACKEND,
-    MILP_BACKENDS,
-    SolverOptions,
-    Status,
-    available_backends,
-    backend_kwargs,
-    check_result,
-    installed_backends,
-    solve_milp,
-)
+from sdc_cvx.milp.backends import available_backends, backend_kwargs, installed_backends
+from sdc_cvx.milp.solve import check_result, solve_milp
+from sdc_cvx.milp.types import BACKENDS, DEFAULT_BACKEND, MILP_BACKENDS, SolverOptions, Status
 
 INSTALLED = installed_backends()
 EASY_OPTIMUM = 2034.0  # of easy_knapsack(), found by every backend without limits

@@ -4,7 +4,8 @@ import cvxpy as cp
 import numpy as np
 import pytest
 
-from sdc_cvx.milp.backends import SolverOptions, solve_milp
+from sdc_cvx.milp.solve import solve_milp
+from sdc_cvx.milp.types import SolverOptions
 from sdc_cvx.planner.linearize import Coefficients
 from sdc_cvx.planner.model import ModelSize, PathModel
 from sdc_cvx.planner.sequential import read_path

@@ -109,7 +109,7 @@ def test_more_debris_than_candidates_is_an_error():
 
 
 def no_incumbent(problem, chain, warm_start=False):
-    from sdc_cvx.milp.backends import SolveReport, Status
+    from sdc_cvx.milp.types import SolveReport, Status
 
     return SolveReport(Status.NO_SOLUTION, None, None, None, 0, 0.1, 0.0, "HIGHS", "time limit")
 

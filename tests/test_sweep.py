@@ -13,7 +13,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 from matplotlib.figure import Figure
-from sdc_cvx.sweep import (
+
+from sdc_cvx.study.runner import (
     RESULT_COLUMNS,
     Study,
     SweepError,
@@ -24,7 +25,6 @@ from sdc_cvx.sweep import (
     solve_scenario,
     sweep,
 )
-
 from sdc_cvx.study.scenario import Scenario, ScenarioError
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -206,7 +206,7 @@ def test_dask_cluster_gives_the_same_table(study_file, reference, tmp_path):
 def test_killed_sweep_resumes_with_every_scenario_once(study_file, reference, tmp_path):
     out = tmp_path / "out"
     code = (
-        "from sdc_cvx.sweep import sweep; "
+        "from sdc_cvx import sweep; "
         f"sweep({str(study_file)!r}, {str(out)!r}, workers=1, progress=False)"
     )
     process = subprocess.Popen([sys.executable, "-c", code], start_new_session=True)

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..errors import MAX_REPORTED, CatalogError
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
 
 __all__ = [
@@ -52,35 +53,7 @@ PAPER_SOURCE = "paper Table 5"
 """``Catalog.source`` of :meth:`Catalog.paper_case`."""
 
 R_EARTH_KM = R_EARTH / 1000.0
-MAX_REPORTED = 20
 _EPOCH_EXPECTED = "expected an ISO-8601 UTC date such as 2020-05-24T12:00:00Z"
-
-
-class CatalogError(ValueError):
-    """A debris catalog cannot be read or fails validation.
-
-    The message has a summary first line (``"3 problems in debris.csv:"``) and then
-    one problem per line, each naming the file, the row, the line and the field.
-
-    Attributes
-    ----------
-    problems : tuple of str
-        Every problem found, including those left out of the message.
-    """
-
-    def __init__(self, message: str, problems: Iterable[str] = ()):
-        super().__init__(message)
-        self.problems = tuple(problems) or (message,)
-
-    @classmethod
-    def collect(cls, source: str, problems: list[str]) -> CatalogError:
-        """Error listing ``problems`` found in ``source``, at most ``MAX_REPORTED`` shown."""
-        count = len(problems)
-        lines = [f"{count} problem{'s' if count != 1 else ''} in {source}:"]
-        lines += [f"  {problem}" for problem in problems[:MAX_REPORTED]]
-        if count > MAX_REPORTED:
-            lines.append(f"  ... and {count - MAX_REPORTED} more")
-        return cls("\n".join(lines), problems)
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -10,13 +10,10 @@ import dataclasses
 import numbers
 from dataclasses import dataclass
 
+from ..errors import MissionError
 from ..physics.orbits import J2, R_EARTH
 
 DRIFT_INCLINATION_RULES = ("table3", "free")
-
-
-class MissionError(ValueError):
-    """A mission parameter is out of range or inconsistent with the others."""
 
 
 @dataclass(frozen=True)

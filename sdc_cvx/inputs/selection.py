@@ -24,6 +24,7 @@ from collections.abc import Iterable
 import numpy as np
 import pandas as pd
 
+from ..physics.orbits import DEFAULT_MAX_ECCENTRICITY
 from .catalog import Catalog
 
 __all__ = [
@@ -33,9 +34,6 @@ __all__ = [
     "select",
     "summary",
 ]
-
-DEFAULT_MAX_ECCENTRICITY = 0.05
-"""Largest eccentricity kept by default (the cost model treats orbits as circular)."""
 
 POLAR_MARGIN_DEG = 0.5
 """Orbits with ``|inclination - 90 deg|`` below this are dropped (RAAN rate ~ 0)."""

@@ -25,6 +25,10 @@ Table 2 follow from 1.0826e-3 (DESIGN §3)."""
 
 SECONDS_PER_DAY = 86400.0
 
+DEFAULT_MAX_ECCENTRICITY = 0.05
+"""Largest eccentricity kept by default: the transfer cost model treats orbits as circular
+(used by the candidate selection, :mod:`sdc_cvx.inputs.selection`)."""
+
 
 def raan_rate(a, e, inc, *, j2=J2, mu=MU_EARTH, r_eq=R_EARTH):
     """Secular J2 precession rate of the right ascension of the ascending node (Eq. 7).

@@ -29,14 +29,16 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
+from ..errors import MissionInfeasible, SolverFailure
 from ..inputs.catalog import Catalog
 from ..inputs.mission import Mission
-from ..milp.backends import SolveReport, SolverOptions, Status, chain_of, solve_with_fallback
+from ..milp.solve import chain_of, solve_with_fallback
+from ..milp.types import SolveReport, SolverOptions, Status
 from ..network.dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
 from ..network.edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
 from ..physics.transfer import cheapest_transfer
-from ..solution import IterationRecord, Leg, PlanEvaluation, Solution, evaluate_plan
+from ..solution import IterationRecord, Leg, PlanEvaluation, RunStatus, Solution, evaluate_plan
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .model import ModelSize, PathModel
 from .reoptimize import reoptimize
@@ -45,14 +47,6 @@ INJECTION_ID = "injection"
 FROZEN_GAP_DEG = 0.1
 MAX_WINDOW_COPIES = 120
 SEED_BISECTION_STEPS = 12  # a seed plan is an estimate: the driver re-optimises its answer
-
-
-class MissionInfeasible(RuntimeError):
-    """No path meets the mission's constraints; the message says what could be relaxed."""
-
-
-class SolverFailure(RuntimeError):
-    """The MILP backend failed or stopped before finding any solution."""
 
 
 @dataclass(frozen=True)
@@ -393,7 +387,7 @@ class _Driver:
         """Total ΔV of a plan: its transfers plus the operations at its debris [m/s]."""
         return float(evaluation.dv_mps.sum() + self.nodes.cost_mps[path].sum())
 
-    def answer(self, status: str):
+    def answer(self, status: RunStatus):
         """The best re-optimised plan, after re-optimising a cheaper iterate if one was seen."""
         cost, plan = self.upper
         best = np.inf if self.best is None else self.total(self.best[0], self.best[2].evaluation)
@@ -502,7 +496,7 @@ class _Driver:
             outcome = self.iterate(note="confirming the re-optimised point" if pending else "")
             if outcome is None:
                 if self.stopped:
-                    return self.answer("time_limit")
+                    return self.answer(RunStatus.TIME_LIMIT)
                 continue
             path, legs, a_legs, evaluation = outcome
             if self.worse_than_held(path, evaluation):
@@ -522,7 +516,7 @@ class _Driver:
                 continue
             if pending is not None:
                 if not changed:
-                    return self.answer("converged")
+                    return self.answer(RunStatus.CONVERGED)
                 self.notes.append("the MILP around the re-optimised point chose another path")
                 pending = None
             elif not changed:
@@ -537,7 +531,7 @@ class _Driver:
                         continue
                     final = self.reoptimize(path, legs, a_legs)
                     if confirmations == self.settings.max_confirmations:
-                        return self.answer("converged_unconfirmed")
+                        return self.answer(RunStatus.CONVERGED_UNCONFIRMED)
                     confirmations += 1
                     self.move_references(path, legs, final.a_drift, final.evaluation, False)
                     pending, last_path, last_dv = final, path, dv_true
@@ -549,7 +543,7 @@ class _Driver:
             last_path, last_dv = path, dv_true
         if self.best is not None or self.upper[1] is not None:
             self.notes.append(f"iteration limit {self.settings.max_iterations} reached")
-            return self.answer("iteration_limit")
+            return self.answer(RunStatus.ITERATION_LIMIT)
         raise SolverFailure(
             f"no converged path within {self.settings.max_iterations} iterations; raise "
             "max_iterations or loosen dv_tol_mps"

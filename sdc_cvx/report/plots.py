@@ -19,8 +19,8 @@ close exactly at each arrival.
 from __future__ import annotations
 
 import os
-import tempfile
 from collections.abc import Sequence
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +33,7 @@ from ..inputs.catalog import Catalog
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
 from ..physics.transfer import NodeOrbits, drift_rate
 from ..solution import Leg, Solution
+from .run_folder import write_atomic
 
 __all__ = [
     "FIGURE_NAMES",
@@ -688,18 +689,7 @@ def save_figures(
         fig = builders[name]()
         for fmt in formats:
             target = folder / f"{name}.{fmt}"
-            _save_atomic(fig, target, fmt, dpi)
+            save = partial(fig.savefig, format=fmt, dpi=dpi)
+            write_atomic(target, save, mode=0o644)  # images are meant to be shared
             written.append(target)
     return written
-
-
-def _save_atomic(fig: Figure, target: Path, fmt: str, dpi: int) -> None:
-    handle, temp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            fig.savefig(stream, format=fmt, dpi=dpi)
-        os.chmod(temp, 0o644)  # mkstemp makes 0600 files; images are meant to be shared
-        os.replace(temp, target)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise

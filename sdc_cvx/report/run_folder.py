@@ -1,25 +1,44 @@
-"""Writing a run's results to a folder, atomically (temp file then rename)."""
+"""Writing a run's results to a folder, atomically (temp file then rename).
+
+:func:`write_atomic` is the one atomic writer: the run folder, the figures
+(:mod:`sdc_cvx.report.plots`) and the sweep folders all go through it.
+"""
 
 from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
+from typing import BinaryIO
 
 from ..inputs.catalog import Catalog
 from ..network.edges import EdgeTable
 from ..solution import Solution
-from .plots import save_figures
 
 
-def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` so that readers never see a truncated file."""
+def write_atomic(
+    path: Path, content: str | Callable[[BinaryIO], None], *, mode: int | None = None
+) -> None:
+    """Write ``content`` to ``path`` so that readers never see a truncated file.
+
+    The one atomic writer of sdc_cvx (a temporary file in the same folder, then
+    ``os.replace``).  ``content`` is text (written as UTF-8) or a function that writes
+    the bytes to the binary stream it is given (a figure's ``savefig``).  ``mode``: the
+    permissions of the file (the temporary file is created 0600), e.g. 0o644 for images.
+    """
     path = Path(path)
     handle, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            stream.write(text)
+        if callable(content):
+            with os.fdopen(handle, "wb") as stream:
+                content(stream)
+        else:
+            with os.fdopen(handle, "w", encoding="utf-8") as stream:
+                stream.write(content)
+        if mode is not None:
+            os.chmod(temp, mode)
         os.replace(temp, path)
     except BaseException:
         Path(temp).unlink(missing_ok=True)
@@ -84,6 +103,8 @@ def write_run(
         written.append(folder / name)
     catalog = solution.catalog if solution.catalog is not None else catalog
     if catalog is not None and formats:
+        from .plots import save_figures  # matplotlib only when figures are drawn
+
         written += save_figures(solution, catalog, folder, formats=tuple(formats))
     write_atomic(folder / "solution.json", solution.to_json())  # last: the run is complete
     return written + [folder / "solution.json"]

@@ -47,20 +47,19 @@ import difflib
 import math
 import os
 import re
-import tomllib
 import typing
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from datetime import UTC, date, datetime, time
 from pathlib import Path
 
-import tomli_w
-
+from ..errors import ScenarioError
 from ..inputs.catalog import Catalog
-from ..inputs.formats import read_gtoc9, read_omm, read_tle
+from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS
 from ..inputs.mission import Mission, MissionError
 from ..inputs.selection import DEFAULT_MAX_ECCENTRICITY, select
-from ..milp.backends import SolverOptions
+from ..milp.types import BACKENDS, SolverOptions
+from .toml import read_toml, toml_value
 
 __all__ = [
     "CATALOG_FORMATS",
@@ -73,45 +72,12 @@ __all__ = [
     "load",
 ]
 
-CATALOG_FORMATS = ("csv", "tle", "omm", "gtoc9")
-"""Catalog formats a scenario may name."""
-
-_READERS: dict[str, Callable[..., Catalog]] = {
-    "csv": Catalog.from_csv,
-    "tle": read_tle,
-    "omm": read_omm,
-    "gtoc9": read_gtoc9,
-}
-"""Reader of each format, ``reader(path, start=None)`` (see :mod:`sdc_cvx.readers`)."""
-READABLE_FORMATS = tuple(_READERS)
+CATALOG_FORMATS = FORMATS
+"""Catalog formats a scenario may name (:data:`~sdc_cvx.inputs.formats.FORMAT_TABLE`)."""
+READABLE_FORMATS = FORMATS
 """Formats that can be read today (a format without a reader would be refused clearly)."""
-
-EXTENSION_FORMATS = {
-    ".csv": "csv",
-    ".tle": "tle",
-    ".3le": "tle",
-    ".2le": "tle",
-    ".txt": "tle",  # a GTOC9 debris_data.txt needs format = "gtoc9"
-    ".omm": "omm",
-    ".kvn": "omm",
-    ".xml": "omm",
-    ".json": "omm",
-}
-"""Catalog format assumed from the file extension when ``catalog.format`` is not given."""
-
-MILP_BACKENDS = (
-    "HIGHS",
-    "SCIP",
-    "CBC",
-    "GLPK_MI",
-    "SCIPY",
-    "GUROBI",
-    "CPLEX",
-    "XPRESS",
-    "MOSEK",
-    "COPT",
-)
-"""CVXPY solver names with MILP support that ``solver.backend`` may name."""
+MILP_BACKENDS = tuple(BACKENDS)
+"""MILP backends a scenario may name (:data:`~sdc_cvx.milp.types.BACKENDS`)."""
 
 PAPER_CASE = "the paper's Table 5 bundled with sdc_cvx"
 
@@ -198,25 +164,6 @@ _UNSET = {"catalog": "the latest epoch in the catalog", "mission": "none",
 """What a key left out of each table means (comments of :meth:`Scenario.to_toml`)."""
 
 
-class ScenarioError(ValueError):
-    """A scenario file (or an override) is invalid; the message is one line.
-
-    Attributes
-    ----------
-    problems : tuple of str
-        Every problem found, each naming the dotted key (``mission.n``).
-    """
-
-    def __init__(self, message: str, problems=()):
-        super().__init__(message)
-        self.problems = tuple(problems) or (message,)
-
-    @classmethod
-    def collect(cls, where: str, problems) -> ScenarioError:
-        """One error for all ``problems`` found in ``where`` (a file name, "overrides")."""
-        return cls(f"{where}: " + "; ".join(problems), problems)
-
-
 @dataclass(frozen=True)
 class Scenario:
     """What to solve and how: catalog, mission, solver options and candidate filters.
@@ -300,7 +247,7 @@ class Scenario:
         """
         if self.catalog_path is None:
             return Catalog.paper_case()
-        reader = _READERS.get(self.catalog_format)
+        reader = READERS.get(self.catalog_format)
         if reader is None:
             raise ScenarioError.collect(
                 self._where(), [_unsupported(self.catalog_format, self.catalog_path, chosen=False)]
@@ -350,7 +297,7 @@ class Scenario:
                 lines.append(f"# no path: {PAPER_CASE}")
                 continue
             unset = [key for key, value in values.items() if value is None]
-            lines += [f"{key} = {_toml_value(value)}" for key, value in values.items()
+            lines += [f"{key} = {toml_value(value)}" for key, value in values.items()
                       if value is not None]  # fmt: skip
             if unset:
                 lines.append(f"# not set ({_UNSET[table]}): {', '.join(unset)}")
@@ -358,27 +305,6 @@ class Scenario:
 
     def _where(self) -> str:
         return "scenario" if self.source is None else os.fspath(self.source)
-
-
-def read_toml(path: str | os.PathLike, what: str) -> tuple[str, dict]:
-    """Text and parsed content of a TOML file, or a ScenarioError saying what is wrong."""
-    where = os.fspath(path)
-    try:
-        text = Path(path).read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise ScenarioError.collect(where, ["file not found"]) from None
-    except IsADirectoryError:
-        raise ScenarioError.collect(where, [f"is a directory, not a {what}"]) from None
-    except UnicodeDecodeError as exc:
-        raise ScenarioError.collect(
-            where, [f"not a UTF-8 text file (undecodable byte at offset {exc.start})"]
-        ) from None
-    except OSError as exc:
-        raise ScenarioError.collect(where, [f"not readable ({exc.strerror or exc})"]) from None
-    try:
-        return text, tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError.collect(where, [f"invalid TOML: {exc}"]) from None
 
 
 def load(path: str | os.PathLike) -> Scenario:
@@ -579,7 +505,7 @@ def _catalog(values: dict, base: Path, problems: list[str]) -> tuple[Path | None
                 f"{', '.join(CATALOG_FORMATS)}"
             )
             return path, "csv"
-    if fmt not in _READERS:
+    if fmt not in READERS:
         problems.append(f"catalog.format: {_unsupported(fmt, path, chosen)}")
     return path, fmt
 
@@ -617,14 +543,6 @@ def _unsupported(fmt: str, path: Path, chosen: bool) -> str:
         f"format {fmt!r} is not supported yet{how}; formats that can be read today: "
         f"{', '.join(READABLE_FORMATS)}"
     )
-
-
-# ---------------------------------------------------------------------- helpers
-def _toml_value(value) -> str:
-    """A TOML value; arrays inline."""
-    if isinstance(value, list | tuple):
-        return "[" + ", ".join(_toml_value(item) for item in value) + "]"
-    return tomli_w.dumps({"v": value}).removeprefix("v = ").rstrip("\n")
 
 
 def _dotted_name(name: str) -> str | None:

@@ -1,0 +1,128 @@
+"""Where a study's scenarios run (a local process pool, a Dask cluster, any executor)
+and the lock that keeps one sweep at a time per output folder."""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import contextlib
+import ctypes
+import multiprocessing
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+from ..errors import SweepError
+
+_LOCK_NAME = ".sweep.lock"
+
+
+@contextlib.contextmanager
+def _executor(executor, scheduler, workers, pending: int) -> Iterator[cf.Executor]:
+    if executor is not None:
+        yield executor
+        return
+    if scheduler is not None:
+        client, own = scheduler, False
+        if isinstance(scheduler, str | os.PathLike):
+            try:
+                from distributed import Client
+            except ImportError as err:
+                raise SweepError(
+                    "a Dask scheduler needs dask.distributed: pip install 'sdc_cvx[dask]'"
+                ) from err
+            client, own = Client(os.fspath(scheduler)), True
+        elif not hasattr(scheduler, "get_executor"):
+            raise TypeError(
+                f"scheduler must be an address or a distributed.Client, "
+                f"got {type(scheduler).__name__}"
+            )
+        pool = client.get_executor(pure=False)
+        try:
+            yield pool
+        except BaseException:
+            pool.shutdown(wait=False)  # cancels what is still queued
+            raise
+        finally:
+            if own:
+                client.close()
+        return
+    size = max(1, min(workers or os.cpu_count() or 1, pending))
+    pool = cf.ProcessPoolExecutor(
+        max_workers=size, mp_context=_mp_context(), initializer=_one_thread_per_worker
+    )
+    try:
+        yield pool
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    else:
+        pool.shutdown(wait=True)
+
+
+_THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+_OPENBLAS_SETTERS = (
+    "openblas_set_num_threads",
+    "scipy_openblas_set_num_threads",
+    "openblas_set_num_threads64_",
+    "scipy_openblas_set_num_threads64_",
+)
+
+
+def _one_thread_per_worker() -> None:
+    """Initializer of the local pool's processes: one BLAS thread, like a Dask worker.
+
+    Parallel scenarios should not compete for cores, and the BLAS thread count changes
+    the last digits of the re-optimisation (about 1e-9 relative): with one thread
+    everywhere, the local pool and a Dask cluster (whose nanny sets these variables)
+    give the same numbers.  The variables cover libraries loaded later; the OpenBLAS
+    copies already loaded (numpy's and scipy's, found in /proc/self/maps) are told
+    directly.  Best effort: elsewhere than Linux only the variables are set.
+    """
+    for name in _THREAD_VARIABLES:
+        os.environ[name] = "1"
+    try:
+        with open("/proc/self/maps", encoding="utf-8", errors="replace") as maps:
+            libraries = {line.split()[-1] for line in maps if "openblas" in line.lower()}
+    except OSError:
+        return
+    for library in sorted(libraries):
+        try:
+            handle = ctypes.CDLL(library)
+        except OSError:
+            continue
+        for setter in _OPENBLAS_SETTERS:
+            function = getattr(handle, setter, None)
+            if function is not None:
+                function(1)
+                break
+
+
+def _mp_context():
+    """Fork server with sdc_cvx preloaded: fast workers, and no fork of a threaded process
+    (a Dask client, a notebook kernel); spawn where there is no fork server."""
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        context = multiprocessing.get_context("forkserver")
+        context.set_forkserver_preload(["sdc_cvx.study.worker"])
+        return context
+    return multiprocessing.get_context("spawn")
+
+
+@contextlib.contextmanager
+def _locked(out: Path) -> Iterator[None]:
+    """One sweep at a time per folder (a POSIX record lock, released if the process dies)."""
+    try:
+        import fcntl
+    except ImportError:  # no fcntl (Windows): no lock
+        yield
+        return
+    handle = open(out / _LOCK_NAME, "a+b")  # noqa: SIM115 (held for the whole sweep)
+    try:
+        try:
+            fcntl.lockf(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            raise SweepError(f"another sweep is writing to {out}") from None
+        yield
+    finally:
+        handle.close()
