@@ -7,6 +7,15 @@ The names below are imported when first used (a module-level ``__getattr__``), s
 ``import sdc_cvx`` loads neither CVXPY nor matplotlib nor the sweep machinery.  The
 subpackages follow the pipeline: ``physics``, ``inputs``, ``network``, ``milp``,
 ``planner``, ``solution``, ``study``, ``report`` (see the README's "Layout").
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations

@@ -83,9 +83,9 @@ def read_catalog(scenario: Scenario) -> Catalog:
 
 def check_backend(solver: SolverOptions) -> None:
     """Exit 2 unless the chosen backend (or one of its fallbacks) is installed."""
-    import cvxpy as cp
+    from .milp.backends import installed_backends
 
-    installed = set(cp.installed_solvers())
+    installed = set(installed_backends())
     usable_chain = [b for b in (solver.backend, *solver.fallback) if b in installed]
     if usable_chain and solver.backend not in installed:
         click.echo(f"warning: {solver.backend} is not installed here; the fallback "
@@ -408,9 +408,9 @@ def catalog_command(file, catalog_format, start, altitude_km, inclination_deg, m
 @main.command()
 def solvers():
     """List the MILP backends CVXPY can use here, with their package versions."""
-    import cvxpy as cp
+    from .milp.backends import installed_backends
 
-    installed = set(cp.installed_solvers())
+    installed = set(installed_backends())
     rows = [("backend", "installed", "package", "version")]
     for name, backend in BACKENDS.items():
         package = backend.module

@@ -1,8 +1,55 @@
-"""Fixtures shared by several test modules."""
+"""Paths, markers and fixtures shared by the test modules.
+
+The tests mirror the package: ``tests/physics/`` tests ``sdc_cvx/physics/`` and so on.
+
+Markers (registered in ``pyproject.toml``):
+
+* ``slow``: more than a few seconds (the enumeration cross-check, sweeps, CLI runs end
+  to end, notebooks); ``pytest -m "not slow"`` is the fast subset;
+* ``requires_shared_data(*files)``: skipped, with the reason, when the public data of
+  ``SHARED_DATA`` (or one of ``files``, relative to it) is absent;
+* ``requires_backend(name)``: skipped unless CVXPY can call the MILP backend ``name``.
+"""
+
+from pathlib import Path
 
 import pytest
 
 from sdc_cvx.milp import solve as milp_solve
+
+REPO = Path(__file__).resolve().parents[1]
+"""The repository's root."""
+EXAMPLES = REPO / "examples"
+"""The example scenario and study files."""
+PAPER_CSV = REPO / "sdc_cvx" / "data" / "paper_table5.csv"
+"""The paper's Table 5, bundled with the package."""
+SHARED_DATA = REPO.parent / "shared" / "data"
+"""Public catalogs (TLE, OMM, GTOC9) kept beside the repository, never copied into it
+(docs/design.md §8)."""
+
+
+def shared_file(relative: str) -> Path:
+    """``SHARED_DATA / relative``, or skip the test saying which file is missing."""
+    path = SHARED_DATA / relative
+    if not path.is_file():
+        pytest.skip(f"public data file {relative} not found in {SHARED_DATA} (docs/design.md §8)")
+    return path
+
+
+def pytest_runtest_setup(item):
+    for marker in item.iter_markers("requires_shared_data"):
+        if not SHARED_DATA.is_dir():
+            pytest.skip(f"the public data folder {SHARED_DATA} is absent (docs/design.md §8)")
+        for relative in marker.args:
+            shared_file(relative)
+    for marker in item.iter_markers("requires_backend"):
+        from sdc_cvx.milp.backends import installed_backends
+        from sdc_cvx.milp.types import BACKENDS
+
+        name = marker.args[0]
+        if name not in installed_backends():
+            package = BACKENDS[name].package if name in BACKENDS else "?"
+            pytest.skip(f"{name} is not installed (pip install {package})")
 
 
 @pytest.fixture
@@ -20,3 +67,10 @@ def crash_backend(monkeypatch):
         monkeypatch.setattr(milp_solve, "solve_milp", solve_milp)
 
     return crash
+
+
+def pytest_collection_modifyitems(items):
+    """The notebooks (run by nbmake) are slow: a few solves each."""
+    for item in items:
+        if item.path.suffix == ".ipynb":
+            item.add_marker(pytest.mark.slow)

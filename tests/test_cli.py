@@ -14,11 +14,12 @@ from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.cli import main
 from sdc_cvx.inputs.formats import read_gtoc9
 from sdc_cvx.study.scenario import Selection, load
+from tests.conftest import EXAMPLES, PAPER_CSV, SHARED_DATA
 
-PAPER_CSV = Path(__file__).resolve().parents[1] / "sdc_cvx" / "data" / "paper_table5.csv"
-GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
+GTOC9 = SHARED_DATA / "gtoc9" / "debris_data.txt"
 
 
+@pytest.mark.slow
 def test_run_paper_case_writes_the_run_folder(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path / "out"), "--quiet"])
     assert result.exit_code == 0, result.output
@@ -35,12 +36,14 @@ def test_run_paper_case_writes_the_run_folder(tmp_path):
     assert not list((tmp_path / "out").glob(".*.tmp"))  # no temp files left behind
 
 
+@pytest.mark.slow
 def test_run_shows_progress_per_iteration_when_forced(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3", "--progress"])
     assert result.exit_code == 0, result.output
     assert "it  0" in result.stderr and "it  0" not in result.stdout
 
 
+@pytest.mark.slow
 def test_run_shows_no_progress_when_stderr_is_not_a_terminal(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3"])
     assert result.exit_code == 0, result.output
@@ -169,6 +172,7 @@ def test_run_infeasible_scenario_exits_3_and_writes_nothing(tmp_path):
     assert_nothing_written(tmp_path)
 
 
+@pytest.mark.slow
 def test_run_scenario_with_flag_override(tmp_path):
     (tmp_path / "scenario.toml").write_text(
         "[mission]\nn = 5\npreopt_days = 61.0\n[solver]\ntime_limit_s = 60.0\n"
@@ -184,6 +188,7 @@ def test_run_scenario_with_flag_override(tmp_path):
     assert not list(out.glob(".*.tmp"))
 
 
+@pytest.mark.slow
 def test_run_json_prints_only_the_solution_on_stdout(tmp_path):
     result = CliRunner().invoke(main, ["run", "--n", "3", "--json", "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
@@ -193,8 +198,9 @@ def test_run_json_prints_only_the_solution_on_stdout(tmp_path):
     assert "total dV" in result.stderr
 
 
+@pytest.mark.slow
 def test_run_example_scenario_writes_it_to_the_run_folder(tmp_path):
-    example = Path(__file__).resolve().parents[1] / "examples" / "paper.toml"
+    example = EXAMPLES / "paper.toml"
     result = CliRunner().invoke(main, ["run", str(example), "--out", str(tmp_path), "--quiet"])
     assert result.exit_code == 0, result.output
     assert "5 -> 8 -> 2 -> 6 -> 10" in result.stdout
@@ -262,6 +268,7 @@ def test_edges_with_a_scenario_and_override(tmp_path):
     assert_one_line_error(result, "mission.dv_max_mps must be > 0")
 
 
+@pytest.mark.slow
 def test_sweep_command_writes_one_row_per_scenario(tmp_path):
     study = tmp_path / "study.toml"
     study.write_text(
@@ -284,6 +291,7 @@ def test_sweep_command_rejects_a_bad_study_before_solving(tmp_path):
     assert not (tmp_path / "out" / "results.csv").exists()
 
 
+@pytest.mark.slow
 def test_run_falls_back_from_an_unavailable_backend(tmp_path):
     result = CliRunner().invoke(
         main,
@@ -296,6 +304,7 @@ def test_run_falls_back_from_an_unavailable_backend(tmp_path):
 
 
 # ---------------------------------------------------------------------- start and selection
+@pytest.mark.slow
 def test_run_selection_is_written_to_the_run_folder_and_reproduces_the_run(tmp_path):
     (tmp_path / "scenario.toml").write_text('[mission]\nn = 3\n[selection]\nexclude_ids = ["7"]\n')
     out = tmp_path / "out"
@@ -314,6 +323,7 @@ def test_run_selection_is_written_to_the_run_folder_and_reproduces_the_run(tmp_p
     assert again["path"] == first["path"] and again["total_dv_mps"] == first["total_dv_mps"]
 
 
+@pytest.mark.slow
 def test_run_flag_overrides_the_scenario_selection(tmp_path):
     (tmp_path / "scenario.toml").write_text("[selection]\naltitude_km = [600, 900]\n")
     result = run_in(tmp_path, "scenario.toml", "--altitude-km", "670", "880", "--ids", "[2-8]",
@@ -334,6 +344,7 @@ def epoch_catalog(folder: Path) -> Path:
     return folder / "epochs.csv"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("file_start", "flags", "expected"),
     [
@@ -355,9 +366,8 @@ def test_run_records_the_start_and_the_flag_overrides_it(tmp_path, file_start, f
     assert load(out / "scenario.toml").catalog_start == written
 
 
+@pytest.mark.requires_shared_data("gtoc9/debris_data.txt")
 def test_catalog_start_moves_the_raans_of_the_gtoc9_file():
-    if not GTOC9.is_file():
-        pytest.skip(f"public data file gtoc9/debris_data.txt not found in {GTOC9.parents[1]}")
     args = ["catalog", str(GTOC9), "--format", "gtoc9", "--ids", "0"]
     result = CliRunner().invoke(main, [*args, "--start", "2000-01-01"])
     assert result.exit_code == 0, result.output

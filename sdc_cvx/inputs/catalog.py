@@ -10,6 +10,15 @@ Input comes from a CSV file, a DataFrame, or the paper's Table 5 bundled with th
 package.  Bad input never produces a pandas or numpy traceback: every problem of a file
 is collected and reported at once in a :class:`CatalogError` that names the file, the
 row, the line and the field.
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations

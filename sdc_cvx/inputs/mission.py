@@ -2,6 +2,15 @@
 
 A frozen dataclass, validated on construction, in the units people use (days, km,
 m/s).  Defaults are the paper's application case (Part V).
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations
@@ -42,7 +51,7 @@ class Mission:
         Drift inclination rule: the paper's Table 3 (fastest RAAN correction), or
         ``"free"``: whichever of the two debris inclinations is cheaper.
     j2 : float
-        Zonal coefficient used by all the transfer physics (DESIGN §3).
+        Zonal coefficient used by all the transfer physics (docs/design.md §3).
     deorbit_by : {"kit", "vehicle"}
         Debris operations scenario (Part I-B): ``"kit"``, a deorbit kit is attached and
         the vehicle goes on from the debris orbit (cost ``operations_dv_mps``);

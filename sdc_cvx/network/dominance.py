@@ -15,6 +15,15 @@ cheaper than the one in hand.  Two lower bounds prove it, both pure numpy:
 
 :func:`cheapest_paths` lists cheap candidate paths over the pre-optimised costs; the
 driver re-optimises a few in the true model to hold a plan before the first MILP.
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations

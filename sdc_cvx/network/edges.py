@@ -4,6 +4,15 @@ For each edge i -> j: the cheapest drift transfer whose duration is at most T0,
 over both sides of the duration asymptote and the allowed drift inclinations.
 Edges that cannot be done within T0 inside the altitude band, or that cost more
 than ΔVmax, are marked and left out of the model (``EdgeTable.kept``).
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations

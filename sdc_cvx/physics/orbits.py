@@ -1,12 +1,17 @@
 """Orbit physics: J2 nodal precession, Keplerian speeds and impulsive manoeuvres.
 
 Pure, vectorised numpy functions in SI units (m, s, rad, m/s).  Every function
-broadcasts over its array arguments.  Equation numbers refer to Cerf,
-*Multiple space debris collecting mission* (``../shared/paper``).
+broadcasts over its array arguments.  Equation numbers refer to Cerf's paper [1]_.
 
 The gravity constants are keyword arguments with the defaults below, never
 buried literals, so a study can reproduce the paper's own printed numbers
-(``j2=1.086e-3``) and show the difference (DESIGN §3).
+(``j2=1.086e-3``) and show the difference (docs/design.md §3).
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations
@@ -21,7 +26,7 @@ MU_EARTH = 3.986e14
 
 J2 = 1.08263e-3
 """First zonal harmonic [-].  The paper prints 1.086e-3 but its C_J2 = 1.318e18 and
-Table 2 follow from 1.0826e-3 (DESIGN §3)."""
+Table 2 follow from 1.0826e-3 (docs/design.md §3)."""
 
 SECONDS_PER_DAY = 86400.0
 

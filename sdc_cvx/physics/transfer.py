@@ -14,6 +14,15 @@ rather than altitude keeps Table 3 valid for prograde orbits too, since
 ``d(rate)/dI > 0`` at every inclination.
 
 All angles are rad, lengths m, times s, speeds m/s.
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ For edge e = i -> j with drift side and inclination fixed by the pre-optimisatio
 
 - cost ``C(a)`` is approximated on the trust interval ``[a_ref + alpha_lo, a_ref + alpha_hi]``
   by the **maximum of two secants**, split at the cost's kink (the drift orbit at a
-  debris radius, DESIGN §7) when it lies inside the interval, else at the reference.
+  debris radius, docs/design.md §7) when it lies inside the interval, else at the reference.
   For a cost that is convex there (kinks of Eq. 13 are convex V shapes) this is exact
   at three points and never crosses the kink with one line; the paper's single secant
   (Eq. 18) is the special case of a split at an end.
@@ -17,6 +17,15 @@ For edge e = i -> j with drift side and inclination fixed by the pre-optimisatio
   window guarantees, so ``T2`` is the exact slope at ``a_ref``.
 
 ``T_L(alpha, tau) = T0 + T1 alpha + T2 tau``, ``tau = t_depart - t_ref``  (Eq. 20).
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations

@@ -13,19 +13,28 @@ Variables (m kept edges, N debris):
 ``z``      N bin   ``x_k y_k`` (Eq. 19): a mid-path debris
 ``p``      m       ``s_ij alpha_ij`` (Eq. 19, 21), km
 ``d``      m       ``s_ij (t_i + T_deorb)``, the departure date of a selected edge, days;
-                   with ``t_ref`` this is ``q_ij = d - s_ij t_ref`` of Eq. 21 (DESIGN §5.3)
+                   with ``t_ref`` this is ``q_ij = d - s_ij t_ref`` of Eq. 21 (docs/design.md §5.3)
 ``w``      m       epigraph of the two-secant linearised cost, m/s
 ``t``      N       arrival date at each debris, days (first debris at 0)
-``u``      N       position along the path (MTZ ordering, DESIGN §5.2)
+``u``      N       position along the path (MTZ ordering, docs/design.md §5.2)
 =========  ======  ====================================================================
 
-Closures of the paper's gaps (DESIGN §5): arrival dates follow the linearised
+Closures of the paper's gaps (docs/design.md §5): arrival dates follow the linearised
 durations of selected edges (with equality: the paper's "leave each debris as soon
 as possible", Part III-H, which makes dates a function of the path and so gives
 the driver meaningful reference dates), the first debris is at t = 0, every date is within
 T_max, MTZ rows forbid a disjoint cycle even with zero-length legs, one date per
 debris.  Eq. 19 for ``p`` reduces to ``s alpha_lo <= p <= s alpha_hi`` because alpha
 appears nowhere else, which removes alpha as a variable without changing the model.
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations
@@ -128,7 +137,7 @@ class PathModel:
         u_from, u_to = out_of.T @ u, into.T @ u
 
         def times(param, var):
-            # diag(P) @ v compiles fast with many parameters (DESIGN §5), unlike multiply
+            # diag(P) @ v compiles fast with many parameters (docs/design.md §5), unlike multiply
             return cp.diag(param) @ var
 
         if duration_model not in ("secant", "two_segments"):

@@ -13,6 +13,15 @@ robust bounded 1-D search, :func:`~sdc_cvx.transfer.minimize_on_interval`).  The
 date falls as ``lam`` rises; bisection finds the cheapest plan that ends by T_max.
 SLSQP then polishes the best plan with sides and inclinations fixed, kept only if it
 is feasible and cheaper.
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations
@@ -23,6 +32,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from ..physics.orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
+from ..physics.plan import PlanEvaluation, evaluate_plan
 from ..physics.transfer import (
     NodeOrbits,
     drift_inclination,
@@ -33,7 +43,6 @@ from ..physics.transfer import (
     transfer_duration,
     transfer_dv,
 )
-from ..solution import PlanEvaluation, evaluate_plan
 from .linearize import KM
 
 ASYMPTOTE_MARGIN = 1e-6  # relative distance kept from the asymptote

@@ -18,6 +18,15 @@ cheapest alternative at its date and time (plus the mission's slack), the fixed 
 is re-optimised in the true model (Part IV-D), and one more MILP around that point
 confirms the path or resumes from another.  The cheapest re-optimised plan that ends
 by T_max is the answer.
+
+Equation, table and part numbers are those of Cerf's paper [1]_; the design
+rationale is in ``docs/design.md``.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
 """
 
 from __future__ import annotations
@@ -37,8 +46,9 @@ from ..milp.types import SolveReport, SolverOptions, Status
 from ..network.dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
 from ..network.edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
+from ..physics.plan import PlanEvaluation, evaluate_plan
 from ..physics.transfer import cheapest_transfer
-from ..solution import IterationRecord, Leg, PlanEvaluation, RunStatus, Solution, evaluate_plan
+from ..solution import IterationRecord, Leg, RunStatus, Solution
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .model import ModelSize, PathModel
 from .reoptimize import reoptimize

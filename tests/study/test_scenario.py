@@ -18,9 +18,7 @@ from sdc_cvx.study.scenario import (
     apply_overrides,
     load,
 )
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
-PAPER_CSV = Path(__file__).resolve().parents[1] / "sdc_cvx" / "data" / "paper_table5.csv"
+from tests.conftest import EXAMPLES, PAPER_CSV, SHARED_DATA
 
 FULL = """
 [catalog]
@@ -299,7 +297,7 @@ def test_to_dict():
 
 
 # ---------------------------------------------------------------------- start and selection
-GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
+GTOC9 = SHARED_DATA / "gtoc9" / "debris_data.txt"
 START_AND_SELECTION = """
 [catalog]
 path = "debris.csv"
@@ -353,9 +351,8 @@ def test_start_and_selection_round_trip_through_to_toml(tmp_path, debris_csv):
     assert load(write(tmp_path, defaults)).selection == Selection()
 
 
+@pytest.mark.requires_shared_data("gtoc9/debris_data.txt")
 def test_start_moves_the_raans_of_a_catalog_with_epochs(tmp_path):
-    if not GTOC9.is_file():
-        pytest.skip(f"public data file gtoc9/debris_data.txt not found in {GTOC9.parents[1]}")
     text = f'[catalog]\npath = "{GTOC9}"\nformat = "gtoc9"\n'
     latest = load(write(tmp_path, text)).load_catalog()
     scenario = load(write(tmp_path, text + "start = 2000-01-01T00:00:00Z\n"))

@@ -26,8 +26,10 @@ from sdc_cvx.study.runner import (
     sweep,
 )
 from sdc_cvx.study.scenario import Scenario, ScenarioError
+from tests.conftest import EXAMPLES
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+pytestmark = pytest.mark.slow  # solves many missions (see tests/conftest.py)
+
 STUDY = """\
 base = "paper.toml"
 

@@ -167,6 +167,7 @@ def test_minimum_transfer_duration_holds_in_the_returned_plan(paper_solution):
     check_legs_against_physics(sol, Catalog.paper_case(), mission)
 
 
+@pytest.mark.slow
 def test_two_half_segment_duration_model_reaches_the_same_plan(paper_solution):
     from sdc_cvx import SequentialSettings
 

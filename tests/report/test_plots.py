@@ -11,6 +11,7 @@ from matplotlib.figure import Figure
 from matplotlib.image import imread
 
 from sdc_cvx import Catalog, solve
+from sdc_cvx.physics.plan import evaluate_plan
 from sdc_cvx.physics.transfer import NodeOrbits
 from sdc_cvx.report.plots import (
     FIGURE_NAMES,
@@ -20,7 +21,7 @@ from sdc_cvx.report.plots import (
     plot_raan,
     save_figures,
 )
-from sdc_cvx.solution import Leg, evaluate_plan
+from sdc_cvx.solution import Leg
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 MU = 3.986e14

@@ -49,9 +49,10 @@ def infeasible_problem():
     return cp.Problem(cp.Minimize(cp.sum(x)), rows)
 
 
-def usable(name):
-    if name not in INSTALLED:
-        pytest.skip(f"{name} is not installed (pip install {BACKENDS[name].package})")
+BY_BACKEND = [
+    pytest.param(name, marks=pytest.mark.requires_backend(name)) for name in MILP_BACKENDS
+]
+"""The backends as parameters, each skipped unless installed (``requires_backend``)."""
 
 
 def skip_if_unlicensed(report):
@@ -61,9 +62,8 @@ def skip_if_unlicensed(report):
 
 
 # --------------------------------------------------------------------------- status per backend
-@pytest.mark.parametrize("backend", MILP_BACKENDS)
+@pytest.mark.parametrize("backend", BY_BACKEND)
 def test_time_limit_without_incumbent_is_no_solution(backend):
-    usable(backend)
     problem, x = hard_knapsack()
     report = solve_milp(problem, SolverOptions(backend=backend, time_limit_s=1e-3))
     skip_if_unlicensed(report)
@@ -73,9 +73,8 @@ def test_time_limit_without_incumbent_is_no_solution(backend):
     assert x.value is None  # no all-zero or fractional point left behind
 
 
-@pytest.mark.parametrize("backend", MILP_BACKENDS)
+@pytest.mark.parametrize("backend", BY_BACKEND)
 def test_time_limit_with_incumbent_keeps_it(backend):
-    usable(backend)
     problem, x = easy_knapsack()
     start = time.perf_counter()
     report = solve_milp(problem, SolverOptions(backend=backend, time_limit_s=0.5))
@@ -93,10 +92,9 @@ def test_time_limit_with_incumbent_keeps_it(backend):
         assert report.nodes is not None and report.dual_bound is not None
 
 
-@pytest.mark.parametrize("backend", MILP_BACKENDS)
+@pytest.mark.parametrize("backend", BY_BACKEND)
 def test_stop_at_the_relative_gap_is_optimal(backend):
     """SCIP says 'gaplimit' and GLPK 'feasible' (CVXPY: optimal_inaccurate) here."""
-    usable(backend)
     problem, x = easy_knapsack()
     report = solve_milp(problem, SolverOptions(backend=backend, mip_gap=0.05, time_limit_s=60))
     skip_if_unlicensed(report)
@@ -106,9 +104,8 @@ def test_stop_at_the_relative_gap_is_optimal(backend):
         assert 0 <= report.mip_gap <= 0.05 + 1e-9
 
 
-@pytest.mark.parametrize("backend", MILP_BACKENDS)
+@pytest.mark.parametrize("backend", BY_BACKEND)
 def test_infeasible_is_reported(backend):
-    usable(backend)
     problem = infeasible_problem()
     report = solve_milp(problem, SolverOptions(backend=backend))
     skip_if_unlicensed(report)
@@ -126,7 +123,7 @@ def test_maximisation_bound_and_objective_include_the_constant():
 
 # --------------------------------------------------------------------------- what CVXPY hides
 def test_cvxpy_reports_highs_time_limit_without_incumbent_as_user_limit():
-    """Why solve_milp reads HiGHS's primal_solution_status (DESIGN §5)."""
+    """Why solve_milp reads HiGHS's primal_solution_status (docs/design.md §5)."""
     problem, x = hard_knapsack()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -134,8 +131,8 @@ def test_cvxpy_reports_highs_time_limit_without_incumbent_as_user_limit():
     assert problem.status == cp.USER_LIMIT and np.allclose(x.value, 0.0)
 
 
+@pytest.mark.requires_backend("CBC")
 def test_cvxpy_reports_cbc_time_limit_without_incumbent_as_optimal_inaccurate():
-    usable("CBC")
     problem, x = hard_knapsack()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -144,8 +141,8 @@ def test_cvxpy_reports_cbc_time_limit_without_incumbent_as_optimal_inaccurate():
     assert not np.allclose(x.value, np.round(x.value), atol=1e-6)
 
 
+@pytest.mark.requires_backend("SCIP")
 def test_cvxpy_raises_on_scip_time_limit_without_incumbent():
-    usable("SCIP")
     problem, _ = hard_knapsack()
     with pytest.raises(cp.error.SolverError), warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -205,8 +202,8 @@ def test_options_reach_each_backend_under_its_own_names(backend, expected):
     assert kwargs == expected
 
 
+@pytest.mark.requires_backend("SCIP")
 def test_unsupported_options_are_reported_not_passed():
-    usable("SCIP")
     problem, _ = easy_knapsack()
     report = solve_milp(problem, SolverOptions(backend="SCIP", threads=2, mip_gap=0.05))
     assert report.status == Status.OPTIMAL and report.ignored_options == ("threads",)
@@ -227,16 +224,16 @@ def test_refused_option_is_an_error_not_a_traceback():
     assert report.status == Status.ERROR and "random_seed" in report.message
 
 
+@pytest.mark.requires_backend("SCIP")
 def test_scip_refuses_a_bad_seed_by_its_name():
-    usable("SCIP")
     problem, _ = hard_knapsack()
     report = solve_milp(problem, SolverOptions(backend="SCIP", seed=-5))
     assert report.status == Status.ERROR and "invalid" in report.message
 
 
+@pytest.mark.requires_backend("SCIPY")
 def test_scipy_knows_our_option_names():
     """SciPy passes unknown names to HiGHS 'verbatim' with only a warning."""
-    usable("SCIPY")
     problem, _ = easy_knapsack()
     kwargs = backend_kwargs(SolverOptions(backend="SCIPY", time_limit_s=5.0, mip_gap=0.05))
     with warnings.catch_warnings(record=True) as caught:
@@ -303,8 +300,8 @@ def test_check_result_accepts_a_solution_and_names_what_is_wrong():
     assert "no value" in check_result(problem)
 
 
+@pytest.mark.requires_backend("SCIPY")
 def test_failed_check_is_an_error_and_leaves_no_point(monkeypatch):
-    usable("SCIPY")
     problem, x = easy_knapsack()
     entry = BACKENDS["SCIPY"]
 

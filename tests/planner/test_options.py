@@ -69,6 +69,7 @@ def test_injection_on_the_first_debris_orbit_changes_nothing(base):
     assert sol.operations["start"] == "injection"
 
 
+@pytest.mark.slow
 def test_injection_far_away_counts_the_first_transfer(base):
     mission = Mission(injection=(6978.0, 0.0, 97.0, 150.0))
     sol = solve(mission=mission)
@@ -78,6 +79,7 @@ def test_injection_far_away_counts_the_first_transfer(base):
     legs_follow_the_physics(sol, PAPER.with_orbit("injection", *mission.injection), 0.0)
 
 
+@pytest.mark.slow
 def test_must_include_and_exclude(base):
     assert "3" not in base.path
     with_3 = solve(mission=Mission(must_include=("3",)))
@@ -118,6 +120,7 @@ def test_infeasible_request_is_named():
         solve(mission=Mission(exclude=("8",)))
 
 
+@pytest.mark.slow
 def test_injection_runs_end_to_end_with_figures(tmp_path):
     """Scenario key, CLI, run folder and figures with an injection orbit (not in the catalog)."""
     import json

@@ -49,6 +49,8 @@ from sdc_cvx import Catalog, Mission
 from sdc_cvx.physics.orbits import R_EARTH, SECONDS_PER_DAY
 from sdc_cvx.physics.transfer import NodeOrbits, drift_inclination, transfer_duration, transfer_dv
 
+pytestmark = pytest.mark.slow  # solves many missions (see tests/conftest.py)
+
 DAY = SECONDS_PER_DAY
 A_LOW, A_HIGH = R_EARTH + 400e3, R_EARTH + 1200e3  # Mission's default drift altitude band
 RULES = ("table3", "free")

@@ -1,6 +1,6 @@
 """Real catalogs: TLE, OMM (CSV, XML, JSON, KVN) and GTOC9 readers, format dispatch, CLI.
 
-The public files live in ``../shared/data`` (DESIGN §8) and are never copied into the
+The public files live in ``../shared/data`` (docs/design.md §8) and are never copied into the
 repository; every test that needs one skips, with the reason, when it is absent.
 Expected values are computed here from the raw text, independently of the readers.
 """
@@ -23,8 +23,8 @@ from sdc_cvx.cli import main
 from sdc_cvx.inputs.catalog import CatalogError
 from sdc_cvx.inputs.formats import read_catalog, read_gtoc9, read_omm, read_tle, sniff_format
 from sdc_cvx.study.scenario import load
+from tests.conftest import shared_file
 
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 SSO_TLE = "sso_rocket_bodies_2020/sso_rb.tle"
 GTOC9 = "gtoc9/debris_data.txt"
 PYKEP = "pykep_tle/tle.txt"
@@ -35,10 +35,7 @@ J2 = 1.08263e-3
 
 
 def data_file(relative: str) -> Path:
-    path = DATA / relative
-    if not path.is_file():
-        pytest.skip(f"public data file {relative} not found in {DATA} (see DESIGN §8)")
-    return path
+    return shared_file(relative)  # skips the test when the file is absent
 
 
 def tle_sets(path: Path) -> list[tuple[str, str, str]]:

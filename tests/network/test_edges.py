@@ -75,7 +75,8 @@ def test_table_6_last_two_legs_differ_and_why(paper):
 
 
 def test_paper_j2_reproduces_table_6_radii_better(paper):
-    """DESIGN §3: with the printed J2 = 1.086e-3 the first legs' radii match Table 6 closer."""
+    """With the printed J2 = 1.086e-3 the first legs' radii match Table 6 closer
+    (docs/design.md §3)."""
     ours, printed = table6_legs(paper), table6_legs(paper, j2=1.086e-3)
     for leg in range(2):
         paper_a = TABLE_6[leg][3]

@@ -68,7 +68,7 @@ def test_ordering_rows_forbid_the_cycle():
 
 
 def test_zero_length_legs_stay_legal():
-    """T_min = 0: a path whose legs all take 0 days is accepted (DESIGN §5.2)."""
+    """T_min = 0: a path whose legs all take 0 days is accepted (docs/design.md §5.2)."""
     model, *_ = cycle_instance()
     solve_milp(model.problem, SolverOptions())
     assert np.allclose(model.t.value, 0.0, atol=1e-6)

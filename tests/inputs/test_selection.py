@@ -13,8 +13,8 @@ from sdc_cvx.cli import main
 from sdc_cvx.inputs.catalog import Catalog
 from sdc_cvx.inputs.formats import read_tle
 from sdc_cvx.inputs.selection import select, summary
+from tests.conftest import shared_file
 
-DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 R_T_KM = 6378.137
 
 
@@ -110,10 +110,7 @@ def test_everything_dropped_gives_an_empty_catalog(mixed):
 
 # ---------------------------------------------------------------------- real data
 def pykep_tle() -> Path:
-    path = DATA / "pykep_tle" / "tle.txt"
-    if not path.is_file():
-        pytest.skip(f"public data file pykep_tle/tle.txt not found in {DATA} (see DESIGN §8)")
-    return path
+    return shared_file("pykep_tle/tle.txt")  # skips the test when the file is absent
 
 
 def test_pykep_selection_says_why_objects_go():

@@ -1,0 +1,160 @@
+"""The package layout: which layer may import which (README "Layout"), and light imports.
+
+Every module's imports are read with ``ast`` (module level and inside functions, so a
+lazy import counts too; ``if TYPE_CHECKING:`` blocks are skipped: they never run).
+"""
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import REPO
+
+PACKAGE = REPO / "sdc_cvx"
+
+# layer -> the layers of ours it may import (besides itself); errors is open to all
+RULES = {
+    "errors": set(),
+    "physics": set(),
+    "inputs": {"physics"},
+    "network": {"inputs", "physics"},
+    "milp": set(),
+    "solution": {"inputs", "physics"},
+    "planner": {"milp", "network", "inputs", "physics", "solution"},
+    "report": {"solution", "inputs", "network", "physics"},
+    "study": {"planner", "inputs", "milp", "report", "solution"},
+    "cli": {"physics", "inputs", "network", "milp", "planner", "solution", "study", "report"},
+    "__init__": {"physics", "inputs", "network", "milp", "planner", "solution", "study", "report"},
+    "__main__": {"cli"},
+}
+"""The import rules of the README's "Layout" section."""
+
+THIRD_PARTY = {
+    "physics": {"numpy"},
+    "inputs": {"numpy", "pandas", "sgp4"},
+    "network": {"numpy", "pandas"},
+}
+"""Layers restricted to a few third-party packages (besides the standard library)."""
+
+CVXPY_LAYERS = {"milp", "planner"}
+
+
+def layer_of(module: str) -> str:
+    """``sdc_cvx.inputs.formats.tle`` -> ``inputs``; ``sdc_cvx`` -> ``__init__``."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "__init__"
+
+
+def module_name(path: Path) -> str:
+    relative = path.relative_to(PACKAGE.parent).with_suffix("")
+    parts = list(relative.parts)
+    if parts[-1] == "__init__" and len(parts) > 1:
+        parts.pop()
+    return ".".join(parts)
+
+
+def is_type_checking(node: ast.If) -> bool:
+    test = node.test
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
+
+
+def imports(path: Path) -> set[str]:
+    """Absolute names of the modules ``path`` imports (relative imports resolved)."""
+    name = module_name(path)
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+
+    def visit(node):
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.If) and is_type_checking(child):
+                for other in child.orelse:
+                    visit(other)
+                continue
+            if isinstance(child, ast.Import):
+                found.update(alias.name for alias in child.names)
+            elif isinstance(child, ast.ImportFrom):
+                if child.level:
+                    base = package.split(".")
+                    base = base[: len(base) - (child.level - 1)]
+                    target = ".".join(base + ([child.module] if child.module else []))
+                    if child.module is None:  # from . import x: x may be a module
+                        found.update(f"{target}.{alias.name}" for alias in child.names)
+                    found.add(target)
+                else:
+                    found.add(child.module)
+            visit(child)
+
+    visit(ast.parse(path.read_text(encoding="utf-8")))
+    return found
+
+
+MODULES = sorted(PACKAGE.rglob("*.py"))
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: module_name(p))
+def test_imports_follow_the_layers(path):
+    name = module_name(path)
+    layer = layer_of(name)
+    assert layer in RULES, f"{name}: layer {layer!r} has no rule in the README's Layout"
+    allowed = RULES[layer] | {layer, "errors"}
+    ours = {m for m in imports(path) if m == "sdc_cvx" or m.startswith("sdc_cvx.")}
+    wrong = sorted(m for m in ours if layer_of(m) not in allowed)
+    assert not wrong, f"{name} ({layer}) may not import {wrong}; allowed: {sorted(allowed)}"
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: module_name(p))
+def test_third_party_imports(path):
+    name = module_name(path)
+    layer = layer_of(name)
+    others = {m.split(".")[0] for m in imports(path)} - {"sdc_cvx"}
+    others -= set(sys.stdlib_module_names) | {"__future__"}
+    if layer in THIRD_PARTY:
+        assert others <= THIRD_PARTY[layer], f"{name} imports {sorted(others)}"
+    if layer not in CVXPY_LAYERS:
+        assert "cvxpy" not in others, f"{name}: cvxpy only in {sorted(CVXPY_LAYERS)}"
+    if layer == "errors":
+        assert not others
+
+
+def test_errors_import_nothing_of_ours():
+    ours = {m for m in imports(PACKAGE / "errors.py") if m.startswith("sdc_cvx")}
+    assert not ours
+
+
+@pytest.mark.parametrize(
+    "module", ["sdc_cvx.inputs.formats", "sdc_cvx.physics.plan", "sdc_cvx.study.runner"]
+)
+def test_a_module_imports_alone(module):
+    """No import cycle: each of these works as the first import of a fresh interpreter."""
+    subprocess.run([sys.executable, "-c", f"import {module}"], check=True)
+
+
+def test_import_sdc_cvx_is_light():
+    """``import sdc_cvx`` (and the CLI module, for ``--help``) load neither CVXPY nor
+    matplotlib nor pandas; the public names still resolve when used."""
+    code = (
+        "import sys, sdc_cvx, sdc_cvx.cli\n"
+        "heavy = [m for m in ('cvxpy', 'matplotlib', 'pandas') if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+        "from sdc_cvx import Catalog, solve, sweep, CatalogError\n"
+        "assert callable(solve) and callable(sweep) and 'cvxpy' in sys.modules\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_old_import_paths_still_work():
+    import sdc_cvx
+    from sdc_cvx import errors
+
+    for name in sdc_cvx.__all__:
+        assert getattr(sdc_cvx, name) is not None
+    assert sdc_cvx.CatalogError is errors.CatalogError
+    assert issubclass(sdc_cvx.MissionInfeasible, RuntimeError)
+    assert issubclass(sdc_cvx.CatalogError, ValueError)
+    with pytest.raises(AttributeError):
+        sdc_cvx.no_such_name  # noqa: B018
