@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
@@ -49,6 +49,7 @@ from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
 from ..physics.plan import PlanEvaluation, evaluate_plan
 from ..physics.transfer import cheapest_transfer
 from ..solution import IterationRecord, Leg, RunStatus, Solution
+from .decisions import Action, Outcome, Phase, decide
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .model import ModelSize, PathModel
 from .reoptimize import reoptimize
@@ -222,8 +223,47 @@ def read_path(model: PathModel, n: int) -> tuple[list[int], list[int]]:
     return path, legs
 
 
+@dataclass
+class RunLog:
+    """What a run records: the iterations (Table 7), notes, timings and backends used."""
+
+    history: list[IterationRecord] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    timings: dict = field(default_factory=dict)
+    backends_used: set[str] = field(default_factory=set)
+    last_switch: str | None = None  # the fallback message last noted (once per change)
+    initial_legs: tuple[Leg, ...] | None = None  # the first linearised plan (paper Fig. 19)
+
+
+@dataclass
+class Incumbents:
+    """The plans in hand: they bound the answer and prune the MILP."""
+
+    upper: tuple = (np.inf, None)  # cheapest plan that ends by T_max: (ΔV, (path, legs, a))
+    best: tuple | None = None  # cheapest re-optimised plan that ends by T_max: (path, legs, final)
+    stopped: bool = False  # a MILP reached its time limit without a solution
+
+
+@dataclass
+class TrustState:
+    """The references and trust intervals of the edge copies (paper Part IV-C)."""
+
+    region: TrustRegion
+    alpha0: float  # the wide radius half-width restored on a new path [km]
+    tau0: float  # the wide date half-width [days]
+    windows: tuple[np.ndarray, np.ndarray]  # each copy's departure-date window [days]
+    visited_paths: set[tuple[int, ...]] = field(default_factory=set)
+    initial_retries: int = 0  # narrowings before any path was found
+
+
 class _Driver:
-    """State of one sequential solve (kept private: :func:`solve` is the API)."""
+    """One sequential solve (kept private: :func:`solve` is the API).
+
+    It holds the problem as built (nodes, edge copies, geometry, dominance floor, the
+    CVXPY model: set up in ``__init__``), the :class:`TrustState` (``trust``), the
+    :class:`Incumbents` (``held``) and the :class:`RunLog` (``log``); :meth:`run`
+    dispatches on :func:`~sdc_cvx.planner.decisions.decide`.
+    """
 
     def __init__(self, nodes: MissionNodes, mission, solver, settings, progress):
         catalog = nodes.catalog
@@ -231,13 +271,18 @@ class _Driver:
         self.catalog, self.mission, self.solver, self.settings = catalog, mission, solver, settings
         self.progress = progress or (lambda record: None)
         self.chain = chain_of(solver)
-        self.backends_used: set[str] = set()
-        self.last_switch = None
-        self.timings = {}
+        self.log = RunLog()
+        self.held = Incumbents()
         first_ops = (
             nodes.deorbit_days.min() if nodes.first is None else nodes.deorbit_days[nodes.first]
         )
         self.depart_range = (float(first_ops), mission.tmax_days - nodes.deorbit_days.min())
+        self.kept = self.edge_copies()
+        self.build()
+
+    def edge_copies(self) -> pd.DataFrame:
+        """The edge copies: every kept edge over its departure-date windows (Part IV-B)."""
+        nodes, catalog, mission, settings = self.nodes, self.catalog, self.mission, self.settings
         start = time.perf_counter()
         # the first transfer leaves after the operations at the first debris
         self.table = preoptimize(catalog, mission, departure_day=self.depart_range[0])
@@ -251,25 +296,28 @@ class _Driver:
             catalog, mission, self.table.counts()["kept"], nodes.legs
         )
         bounds = np.linspace(*self.depart_range, windows + 1)
-        self.kept = preoptimize_windows(
+        kept = preoptimize_windows(
             catalog, mission, bounds, reference_days=2 / 3 * share,
             reference_at=(0.0,) if windows == 1 else (0.0, 0.5),
         )  # fmt: skip
-        self.timings["preoptimize_s"] = time.perf_counter() - start
+        self.log.timings["preoptimize_s"] = time.perf_counter() - start
         # excluded debris lose their edges; nothing returns to the injection orbit
         barred = np.array(nodes.excluded + ((nodes.first,) if mission.injection else ()), int)
-        touches = self.kept["i"].isin(nodes.excluded) | self.kept["j"].isin(barred)
-        self.kept = self.kept[~touches].reset_index(drop=True)
-        if self.kept[["i", "j"]].drop_duplicates().shape[0] < nodes.legs:
+        touches = kept["i"].isin(nodes.excluded) | kept["j"].isin(barred)
+        kept = kept[~touches].reset_index(drop=True)
+        if kept[["i", "j"]].drop_duplicates().shape[0] < nodes.legs:
             raise MissionInfeasible(_relax_message(mission, self.table.summary()))
+        return kept
+
+    def build(self):
+        """The geometry, dominance floor, CVXPY model and trust state of the edge copies."""
+        nodes, catalog, mission, settings = self.nodes, self.catalog, self.mission, self.settings
         self.orbits = node_orbits(catalog, mission)
         self.geometry = edge_geometry(self.kept, catalog, mission)
         g = self.geometry
         edge_floor = transfer_dv_floor(g.origin, g.target, g.a_low, g.a_high)
         self.floor = path_cost_floor(self.kept["i"], self.kept["j"], edge_floor, nodes.cost_mps,
                                      nodes.legs, first=nodes.first)  # fmt: skip
-        self.upper = (np.inf, None)  # cheapest plan that ends by T_max: (ΔV, (path, legs, a))
-        self.stopped = False  # a MILP reached its time limit without a solution
         start = time.perf_counter()
         self.model = PathModel(
             len(catalog), self.kept["i"].to_numpy(), self.kept["j"].to_numpy(),
@@ -278,43 +326,41 @@ class _Driver:
             first=nodes.first, must_visit=nodes.must_visit,
             duration_model=settings.duration_model,
         )  # fmt: skip
-        self.timings["build_s"] = time.perf_counter() - start
+        self.log.timings["build_s"] = time.perf_counter() - start
         m = len(self.kept)
-        self.windows = (self.kept["window_lo"].to_numpy(), self.kept["window_hi"].to_numpy())
-        self.alpha0 = settings.alpha_km
-        self.tau0 = settings.tau_days if settings.tau_days is not None else mission.tmax_days
-        self.region = TrustRegion(
-            a_ref=self.kept["drift_a_km"].to_numpy(dtype=float) * 1e3,
-            t_ref=self.kept["departure_day"].to_numpy(dtype=float),
-            alpha_km=np.full(m, self.alpha0),
-            tau_days=np.full(m, self.tau0),
+        alpha0 = settings.alpha_km
+        tau0 = settings.tau_days if settings.tau_days is not None else mission.tmax_days
+        self.trust = TrustState(
+            region=TrustRegion(
+                a_ref=self.kept["drift_a_km"].to_numpy(dtype=float) * 1e3,
+                t_ref=self.kept["departure_day"].to_numpy(dtype=float),
+                alpha_km=np.full(m, alpha0),
+                tau_days=np.full(m, tau0),
+            ),
+            alpha0=alpha0,
+            tau0=tau0,
+            windows=(self.kept["window_lo"].to_numpy(), self.kept["window_hi"].to_numpy()),
         )
-        self.visited_paths: set[tuple[int, ...]] = set()
-        self.history: list[IterationRecord] = []
-        self.initial_retries = 0
-        self.best = None  # cheapest re-optimised plan that ends by T_max: (path, legs, final)
-        self.initial_legs = None  # the first linearised solution's plan (paper Fig. 19)
-        self.notes: list[str] = []
 
     # -- one iteration -------------------------------------------------------------------
     def iterate(self, note=""):
-        k = len(self.history)
+        k = len(self.log.history)
         start = time.perf_counter()
-        coefficients = linearize(self.geometry, self.region, tmax_days=self.mission.tmax_days,
-                                 depart_range=self.windows)  # fmt: skip
+        coefficients = linearize(self.geometry, self.trust.region, tmax_days=self.mission.tmax_days,
+                                 depart_range=self.trust.windows)  # fmt: skip
         coefficients = replace(coefficients, available=coefficients.available & self.undominated())
         warm = self.start_from_held(coefficients) or k > 0
         self.model.update(coefficients)
         report = solve_with_fallback(self.model.problem, self.chain, warm_start=warm)
-        self.backends_used.add(report.backend)
+        self.log.backends_used.add(report.backend)
         if report.fallbacks:
             switched = "; ".join(report.fallbacks)
             note = (note + "; " if note else "") + switched
-            if switched != self.last_switch:  # once per change, not once per iteration
-                self.notes.append(f"from iteration {k}: {switched}")
-            self.last_switch = switched
+            if switched != self.log.last_switch:  # once per change, not once per iteration
+                self.log.notes.append(f"from iteration {k}: {switched}")
+            self.log.last_switch = switched
         if k == 0:
-            self.timings["first_solve_overhead_s"] = report.overhead_seconds
+            self.log.timings["first_solve_overhead_s"] = report.overhead_seconds
         if not report.status.has_solution:
             return self._no_solution(report, start)
         path, legs = read_path(self.model, self.nodes.legs + 1)
@@ -325,11 +371,11 @@ class _Driver:
         if report.status == Status.TIME_LIMIT:
             gap = "unknown" if report.mip_gap is None else f"{report.mip_gap:.2%}"
             note = (note + "; " if note else "") + f"time limit: incumbent used (gap {gap})"
-            self.notes.append(f"iteration {len(self.history)}: {note}")
+            self.log.notes.append(f"iteration {len(self.log.history)}: {note}")
         self.record(report, path, legs, evaluation, start, note)
-        if self.initial_legs is None:
+        if self.log.initial_legs is None:
             g = self.geometry
-            self.initial_legs = make_legs(
+            self.log.initial_legs = make_legs(
                 self.catalog.ids, path, a_legs, g.inc_drift[legs], g.side[legs], evaluation
             )
         return path, legs, a_legs, evaluation
@@ -343,7 +389,7 @@ class _Driver:
         once the intervals have moved (measured at N = 123 with a 10 s limit: HiGHS
         then found no incumbent).  False if the linearised model does not admit the path.
         """
-        plan = self.upper[1]
+        plan = self.held.upper[1]
         if plan is None:
             return False
         only = np.zeros_like(coefficients.available)
@@ -356,18 +402,18 @@ class _Driver:
 
         (A step that only ends late is rejected in :meth:`run`, around the same point.)
         """
-        cost, plan = self.upper
+        cost, plan = self.held.upper
         if plan is None or list(plan[0]) != list(path):
             return False
         return self.total(path, evaluation) > cost + self.settings.dv_tol_mps
 
     def return_to_held(self):
         """Reject the step: linearise the held plan's copies around it, narrower."""
-        path, legs, a_drift = self.upper[1]
+        path, legs, a_drift = self.held.upper[1]
         self.set_references(legs, a_drift, self.evaluate(path, legs, a_drift).departure_day)
         self.narrow(legs, dates=True)
-        self.notes.append(
-            f"iteration {len(self.history) - 1}: the step made the held plan worse in the true "
+        self.log.notes.append(
+            f"iteration {len(self.log.history) - 1}: the step made the held plan worse in the true "
             "model: rejected, intervals narrowed around the held plan"
         )
 
@@ -376,15 +422,15 @@ class _Driver:
 
     def undominated(self) -> np.ndarray:
         """Edges on some path that may cost less than the cheapest plan in hand."""
-        cost = self.upper[0]
+        cost = self.held.upper[0]
         return self.floor <= cost + 1e-9 * abs(cost) + 1e-6
 
     def bound_by(self, path, legs, a_drift, evaluation: PlanEvaluation):
         """Keep the cheapest plan seen that meets T_max and T_min in the true model."""
         ends_in_time = self.fits(evaluation)
         cost = self.total(path, evaluation)
-        if ends_in_time and cost < self.upper[0]:
-            self.upper = (cost, (path, legs, np.asarray(a_drift, dtype=float)))
+        if ends_in_time and cost < self.held.upper[0]:
+            self.held.upper = (cost, (path, legs, np.asarray(a_drift, dtype=float)))
         return ends_in_time
 
     def fits(self, evaluation: PlanEvaluation) -> bool:
@@ -399,13 +445,17 @@ class _Driver:
 
     def answer(self, status: RunStatus):
         """The best re-optimised plan, after re-optimising a cheaper iterate if one was seen."""
-        cost, plan = self.upper
-        best = np.inf if self.best is None else self.total(self.best[0], self.best[2].evaluation)
+        cost, plan = self.held.upper
+        best = (
+            np.inf
+            if self.held.best is None
+            else self.total(self.held.best[0], self.held.best[2].evaluation)
+        )
         if plan is not None and cost < best - 1e-6:
             self.reoptimize(*plan)
-        if self.best is None:
+        if self.held.best is None:
             raise SolverFailure("no re-optimised plan ends by T_max")
-        return self.best + (status,)
+        return self.held.best + (status,)
 
     def evaluate(self, path, legs, a_legs) -> PlanEvaluation:
         return evaluate_plan(
@@ -415,7 +465,7 @@ class _Driver:
 
     def record(self, report: SolveReport, path, legs, evaluation, start, note):
         record = IterationRecord(
-            iteration=len(self.history),
+            iteration=len(self.log.history),
             path=self.id_path(path),
             dv_linearized_mps=report.objective,
             dv_true_mps=self.total(path, evaluation) if path else None,
@@ -424,20 +474,20 @@ class _Driver:
             seconds=time.perf_counter() - start,
             solve_seconds=report.solve_seconds,
             cvxpy_seconds=report.overhead_seconds,
-            alpha_km=float(np.max(self.region.alpha_km[legs])) if len(legs) else None,
+            alpha_km=float(np.max(self.trust.region.alpha_km[legs])) if len(legs) else None,
             status=report.status.value,
             note=note,
         )
-        self.history.append(record)
+        self.log.history.append(record)
         self.progress(record)
 
     def _no_solution(self, report: SolveReport, start):
-        if report.status == Status.NO_SOLUTION and self.upper[1] is not None:
+        if report.status == Status.NO_SOLUTION and self.held.upper[1] is not None:
             # the time limit struck before any MILP solution, but a plan is held: keep it
-            self.stopped = True
+            self.held.stopped = True
             self.record(report, [], [], None, start, "time limit without a solution")
-            self.notes.append(
-                f"iteration {len(self.history) - 1}: {report.backend} reached its time limit "
+            self.log.notes.append(
+                f"iteration {len(self.log.history) - 1}: {report.backend} reached its time limit "
                 "without a solution; the cheapest plan held is returned (raise the time limit "
                 "to let the iterations continue)"
             )
@@ -445,13 +495,15 @@ class _Driver:
         if report.status in (Status.ERROR, Status.NO_SOLUTION, Status.UNBOUNDED):
             hint = " (raise the time limit)" if report.status == Status.NO_SOLUTION else ""
             raise SolverFailure(f"{report.backend}: {report.status.value}: {report.message}{hint}")
-        if not any(record.path for record in self.history):
+        if not any(record.path for record in self.log.history):
             # over-estimated durations (wide secants) can make a feasible mission look
             # infeasible: narrow the radius intervals a few times before concluding
-            if self.initial_retries == self.settings.initial_retries:
+            if self.trust.initial_retries == self.settings.initial_retries:
                 raise MissionInfeasible(_relax_message(self.mission, self.table.summary()))
-            self.initial_retries += 1
-            self.region = replace(self.region, alpha_km=self.region.alpha_km * self.settings.shrink)
+            self.trust.initial_retries += 1
+            self.trust.region = replace(
+                self.trust.region, alpha_km=self.trust.region.alpha_km * self.settings.shrink
+            )
             self.record(report, [], [], None, start, "no path yet: radius intervals narrowed")
             return None
         # infeasible around the new references: the secants over-estimate too much; narrow them
@@ -469,26 +521,28 @@ class _Driver:
         """
         self.set_references(legs, a_legs, evaluation.departure_day)
         if path_changed:
-            m = len(self.region.a_ref)
-            self.region = replace(self.region, alpha_km=np.full(m, self.alpha0),
-                                  tau_days=np.full(m, self.tau0))  # fmt: skip
+            m = len(self.trust.region.a_ref)
+            self.trust.region = replace(self.trust.region, alpha_km=np.full(m, self.trust.alpha0),
+                                  tau_days=np.full(m, self.trust.tau0))  # fmt: skip
         else:
             self.narrow(legs, dates=True)
 
     def set_references(self, legs, a_drift, departure_day):
         """Linearise ``legs`` around these radii [m] and departure dates (within windows)."""
-        a_ref, t_ref = self.region.a_ref.copy(), self.region.t_ref.copy()
+        a_ref, t_ref = self.trust.region.a_ref.copy(), self.trust.region.t_ref.copy()
         a_ref[legs] = a_drift
-        t_ref[legs] = np.clip(departure_day, self.windows[0][legs], self.windows[1][legs])
-        self.region = replace(self.region, a_ref=a_ref, t_ref=t_ref)
+        t_ref[legs] = np.clip(
+            departure_day, self.trust.windows[0][legs], self.trust.windows[1][legs]
+        )
+        self.trust.region = replace(self.trust.region, a_ref=a_ref, t_ref=t_ref)
 
     def narrow(self, edges, *, dates: bool):
         """Halve the radius (and date) intervals of ``edges``; other edges stay wide."""
-        alpha, tau = self.region.alpha_km.copy(), self.region.tau_days.copy()
+        alpha, tau = self.trust.region.alpha_km.copy(), self.trust.region.tau_days.copy()
         alpha[edges] = np.maximum(alpha[edges] * self.settings.shrink, self.settings.min_alpha_km)
         if dates:
             tau[edges] = tau[edges] * self.settings.shrink
-        self.region = replace(self.region, alpha_km=alpha, tau_days=tau)
+        self.trust.region = replace(self.trust.region, alpha_km=alpha, tau_days=tau)
 
     def run(self):
         """Iterate until the path is stable and the true ΔV stops moving, then re-optimise.
@@ -496,68 +550,93 @@ class _Driver:
         After the re-optimisation (Part IV-D) one more MILP around the re-optimised
         point confirms the path: the linear iterations settle the discrete choice, the
         nonlinear step the continuous one.  If that MILP prefers another path, the
-        iterations resume from it.
+        iterations resume from it.  What to do after each iteration is
+        :func:`~sdc_cvx.planner.decisions.decide`'s rule; this loop carries it out.
         """
         self.seed()
+        phase = Phase()
         last_path, last_dv = None, None
-        pending = None  # re-optimised plan waiting for the confirming MILP
-        flips = confirmations = 0
-        while len(self.history) < self.settings.max_iterations:
-            outcome = self.iterate(note="confirming the re-optimised point" if pending else "")
-            if outcome is None:
-                if self.stopped:
-                    return self.answer(RunStatus.TIME_LIMIT)
+        while len(self.log.history) < self.settings.max_iterations:
+            outcome = self.iterate(
+                note="confirming the re-optimised point" if phase.confirming else ""
+            )
+            seen = self.observe(outcome, last_path, last_dv)
+            action = decide(phase, seen, self.settings)
+            if action is Action.TRY_FLIP:
+                if self.flip_assumptions(*outcome):
+                    phase = replace(phase, flips=phase.flips + 1)
+                    last_path = None
+                    continue
+                no_rounds_left = replace(phase, flips=self.settings.max_assumption_rounds)
+                action = decide(no_rounds_left, seen, self.settings)
+            if action is Action.FINISH_TIME_LIMIT:
+                return self.answer(RunStatus.TIME_LIMIT)
+            if action is Action.ITERATE:
                 continue
             path, legs, a_legs, evaluation = outcome
-            if self.worse_than_held(path, evaluation):
-                self.return_to_held()
-                continue
             dv_true = float(evaluation.dv_mps.sum())
-            changed = path != last_path
-            late = not self.fits(evaluation)
-            stalled = not changed and abs(last_dv - dv_true) <= self.settings.dv_tol_mps
-            if late and last_path is not None and pending is None and not stalled:
-                # the linear durations under-estimated (date cross terms): reject the step
-                self.narrow(legs, dates=True)
-                self.notes.append(
-                    f"iteration {len(self.history) - 1}: true plan ends on day "
-                    f"{evaluation.end_day:.1f}, after T_max: step rejected, intervals narrowed"
-                )
-                continue
-            if pending is not None:
-                if not changed:
-                    return self.answer(RunStatus.CONVERGED)
-                self.notes.append("the MILP around the re-optimised point chose another path")
-                pending = None
-            elif not changed:
-                # a stalled plan that ends a little late is made to fit by the re-optimisation
-                narrowest = np.max(self.region.alpha_km[legs]) <= self.settings.min_alpha_km
-                if stalled or narrowest:
-                    if flips < self.settings.max_assumption_rounds and self.flip_assumptions(
-                        path, legs, a_legs, evaluation
-                    ):
-                        flips += 1
-                        last_path = None
-                        continue
-                    final = self.reoptimize(path, legs, a_legs)
-                    if confirmations == self.settings.max_confirmations:
-                        return self.answer(RunStatus.CONVERGED_UNCONFIRMED)
-                    confirmations += 1
-                    self.move_references(path, legs, final.a_drift, final.evaluation, False)
-                    pending, last_path, last_dv = final, path, dv_true
-                    continue
-            revisited = changed and tuple(path) in self.visited_paths
-            self.visited_paths.add(tuple(path))
-            # a path seen before does not restore wide intervals (no ping-pong between paths)
-            self.move_references(path, legs, a_legs, evaluation, changed and not revisited)
-            last_path, last_dv = path, dv_true
-        if self.best is not None or self.upper[1] is not None:
-            self.notes.append(f"iteration limit {self.settings.max_iterations} reached")
+            if action is Action.RETURN_TO_HELD:
+                self.return_to_held()
+            elif action is Action.REJECT_LATE:
+                self.reject_late(legs, evaluation)
+            elif action is Action.FINISH_CONVERGED:
+                return self.answer(RunStatus.CONVERGED)
+            elif action is Action.REOPTIMIZE_AND_FINISH:
+                self.reoptimize(path, legs, a_legs)
+                return self.answer(RunStatus.CONVERGED_UNCONFIRMED)
+            elif action is Action.REOPTIMIZE_AND_CONFIRM:
+                final = self.reoptimize(path, legs, a_legs)
+                phase = replace(phase, confirming=True, confirmations=phase.confirmations + 1)
+                self.move_references(path, legs, final.a_drift, final.evaluation, False)
+                last_path, last_dv = path, dv_true
+            else:  # MOVE, or LEAVE_CONFIRMATION and then move
+                if action is Action.LEAVE_CONFIRMATION:
+                    self.log.notes.append(
+                        "the MILP around the re-optimised point chose another path"
+                    )
+                    phase = replace(phase, confirming=False)
+                self.advance(path, legs, a_legs, evaluation, seen.changed)
+                last_path, last_dv = path, dv_true
+        if self.held.best is not None or self.held.upper[1] is not None:
+            self.log.notes.append(f"iteration limit {self.settings.max_iterations} reached")
             return self.answer(RunStatus.ITERATION_LIMIT)
         raise SolverFailure(
             f"no converged path within {self.settings.max_iterations} iterations; raise "
             "max_iterations or loosen dv_tol_mps"
         )
+
+    def observe(self, outcome, last_path, last_dv) -> Outcome:
+        """What :func:`~sdc_cvx.planner.decisions.decide` needs to know of an iteration."""
+        if outcome is None:
+            return Outcome(solved=False, stopped=self.held.stopped)
+        path, legs, _, evaluation = outcome
+        changed = path != last_path
+        dv_true = float(evaluation.dv_mps.sum())
+        return Outcome(
+            worse_than_held=self.worse_than_held(path, evaluation),
+            changed=changed,
+            first=last_path is None,
+            late=not self.fits(evaluation),
+            stalled=not changed and abs(last_dv - dv_true) <= self.settings.dv_tol_mps,
+            narrowest=bool(np.max(self.trust.region.alpha_km[legs]) <= self.settings.min_alpha_km),
+        )
+
+    def reject_late(self, legs, evaluation: PlanEvaluation):
+        """The linear durations under-estimated (date cross terms): narrow the chosen copies."""
+        self.narrow(legs, dates=True)
+        self.log.notes.append(
+            f"iteration {len(self.log.history) - 1}: true plan ends on day "
+            f"{evaluation.end_day:.1f}, after T_max: step rejected, intervals narrowed"
+        )
+
+    def advance(self, path, legs, a_legs, evaluation: PlanEvaluation, changed: bool):
+        """Move the references to the solution (phase 1 or 2, see :meth:`move_references`).
+
+        A path seen before does not restore wide intervals (no ping-pong between paths).
+        """
+        revisited = changed and tuple(path) in self.trust.visited_paths
+        self.trust.visited_paths.add(tuple(path))
+        self.move_references(path, legs, a_legs, evaluation, changed and not revisited)
 
     def seed(self):
         """Hold the cheapest re-optimised plan among paths that are cheap leg by leg.
@@ -609,16 +688,16 @@ class _Driver:
             final = self.true_optimum(path, legs, a_ref[legs])
             if self.bound_by(path, legs, final.a_drift, final.evaluation):
                 held = (legs, final)
-        self.timings["seed_s"] = time.perf_counter() - start
+        self.log.timings["seed_s"] = time.perf_counter() - start
         if held is not None:
             # the held plan's copies take its sides, inclinations, radii and dates: the
             # first MILP is linearised around it and can start from it
             legs, final = held
             self.adopt(legs, final)
             self.set_references(legs, final.a_drift, final.evaluation.departure_day)
-            shown = "->".join(self.id_path(self.upper[1][0]))
-            self.notes.append(
-                f"held before the first MILP: {shown} at {self.upper[0]:.1f} m/s (cheapest of "
+            shown = "->".join(self.id_path(self.held.upper[1][0]))
+            self.log.notes.append(
+                f"held before the first MILP: {shown} at {self.held.upper[0]:.1f} m/s (cheapest of "
                 f"{len(candidates)} paths re-optimised); {int((~self.undominated()).sum())} of "
                 f"{len(kept)} edge copies dominated"
             )
@@ -644,16 +723,17 @@ class _Driver:
         start = time.perf_counter()
         final = self.true_optimum(path, legs, a_legs)
         self.adopt(legs, final)  # the confirming MILP linearises around this plan
-        self.timings["reoptimize_s"] = self.timings.get("reoptimize_s", 0.0) + (
+        self.log.timings["reoptimize_s"] = self.log.timings.get("reoptimize_s", 0.0) + (
             time.perf_counter() - start
         )
-        self.notes.append(f"re-optimisation: {final.message}; {final.improved_by_mps:+.2f} m/s")
+        self.log.notes.append(f"re-optimisation: {final.message}; {final.improved_by_mps:+.2f} m/s")
         ends_in_time = self.bound_by(path, legs, final.a_drift, final.evaluation)
         cost = self.total(path, final.evaluation)
         if ends_in_time and (
-            self.best is None or cost < self.total(self.best[0], self.best[2].evaluation)
+            self.held.best is None
+            or cost < self.total(self.held.best[0], self.held.best[2].evaluation)
         ):
-            self.best = (path, legs, final)
+            self.held.best = (path, legs, final)
         return final
 
     def flip_assumptions(self, path, legs, a_legs, evaluation) -> bool:
@@ -675,7 +755,7 @@ class _Driver:
         if flip.size == 0:
             return False
         side, inc = self.geometry.side.copy(), self.geometry.inc_drift.copy()
-        a_ref = self.region.a_ref.copy()
+        a_ref = self.trust.region.a_ref.copy()
         ids = self.catalog.ids
         for leg in flip:
             edge = legs[leg]
@@ -684,7 +764,7 @@ class _Driver:
                 best.inc_drift[leg],
                 best.a_drift[leg],
             )
-            self.notes.append(
+            self.log.notes.append(
                 f"leg {ids[path[leg]]}->{ids[path[leg + 1]]}: resumed with "
                 f"side {int(best.side[leg]):+d}, drift inclination "
                 f"{np.rad2deg(best.inc_drift[leg]):.2f} deg ({best.dv[leg]:.1f} m/s "
@@ -692,8 +772,9 @@ class _Driver:
             )
         self.geometry = self.geometry._replace(side=side, inc_drift=inc)
         m = len(a_ref)
-        self.region = TrustRegion(a_ref, self.region.t_ref, np.full(m, self.alpha0),
-                                  np.full(m, self.tau0))  # fmt: skip
+        self.trust.region = TrustRegion(a_ref, self.trust.region.t_ref,
+                                        np.full(m, self.trust.alpha0),
+                                        np.full(m, self.trust.tau0))  # fmt: skip
         return True
 
 
@@ -736,8 +817,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     catalog = nodes.catalog
     driver = _Driver(nodes, mission, solver, settings, progress)
     path, legs, final, status = driver.run()
-    driver.timings["iterations_s"] = sum(r.seconds for r in driver.history)
-    driver.timings["total_s"] = time.perf_counter() - wall
+    driver.log.timings["iterations_s"] = sum(r.seconds for r in driver.log.history)
+    driver.log.timings["total_s"] = time.perf_counter() - wall
     ids = catalog.ids
     plan = final.evaluation
     legs_out = make_legs(ids, path, final.a_drift, final.inc_drift, final.side, plan)
@@ -745,7 +826,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     return Solution(
         path=tuple(ids[k] for k in path),
         legs=legs_out,
-        initial_legs=driver.initial_legs or (),
+        initial_legs=driver.log.initial_legs or (),
         catalog=catalog,
         total_dv_mps=float(plan.dv_mps.sum() + nodes.cost_mps[path].sum()),
         operations={
@@ -760,9 +841,9 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         },  # fmt: skip
         total_duration_days=plan.end_day,
         status=status,
-        backend="+".join(sorted(driver.backends_used)) or solver.backend,
+        backend="+".join(sorted(driver.log.backends_used)) or solver.backend,
         mission=mission,
-        iterations=tuple(driver.history),
+        iterations=tuple(driver.log.history),
         model_size={
             "edges_kept": len(driver.kept[["i", "j"]].drop_duplicates()),
             "edge_copies": len(driver.kept),
@@ -774,8 +855,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
             "constraints": size.constraints,
             "paper_unfiltered": vars(ModelSize.paper(len(catalog))),
         },
-        timings=driver.timings,
-        notes=tuple(driver.notes),
+        timings=driver.log.timings,
+        notes=tuple(driver.log.notes),
     )
 
 
