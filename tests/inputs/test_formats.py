@@ -534,3 +534,26 @@ def test_cli_catalog_bad_tle_names_the_line(tmp_path, three_sets):
     result = CliRunner().invoke(main, ["catalog", str(path)])
     assert result.exit_code == 2 and result.stdout == ""
     assert f"{path}, line 3: expected 69 characters" in result.stderr
+
+
+def test_every_path_reads_through_the_one_format_table(tmp_path):
+    """A TLE file named x.csv: read_catalog, a scenario file and the CLI say the same."""
+    from sdc_cvx.inputs.formats import EXTENSION_FORMATS, FORMAT_TABLE, READERS
+    from sdc_cvx.study.scenario import CATALOG_FORMATS, Scenario
+
+    assert tuple(FORMAT_TABLE) == CATALOG_FORMATS == ("csv", "tle", "omm", "gtoc9")
+    assert {name: f.read for name, f in FORMAT_TABLE.items()} == READERS
+    assert EXTENSION_FORMATS[".csv"] == "csv" and EXTENSION_FORMATS[".tle"] == "tle"
+    named_csv = tmp_path / "x.csv"
+    named_csv.write_bytes(data_file(SSO_TLE).read_bytes())
+    hint = "looks like a 'tle' catalog, not 'csv'"
+    with pytest.raises(CatalogError, match=hint):
+        read_catalog(named_csv, "csv")
+    assert len(read_catalog(named_csv)) == 81  # no format given: told from the content
+    scenario = Scenario().with_overrides(catalog_path=named_csv)
+    assert scenario.catalog_format == "csv"
+    with pytest.raises(CatalogError, match=hint) as err:
+        scenario.load_catalog()
+    assert any("missing required column" in p for p in err.value.problems)  # still said
+    result = CliRunner().invoke(main, ["catalog", str(named_csv)])
+    assert result.exit_code == 2 and hint in result.stderr

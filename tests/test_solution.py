@@ -1,0 +1,26 @@
+"""Run statuses (sdc_cvx.solution.RunStatus): an enum that reads and writes as today's strings."""
+
+import json
+
+import pytest
+
+from sdc_cvx.solution import RunStatus
+
+
+@pytest.mark.parametrize(
+    "status, text",
+    [
+        (RunStatus.CONVERGED, "converged"),
+        (RunStatus.CONVERGED_UNCONFIRMED, "converged_unconfirmed"),
+        (RunStatus.ITERATION_LIMIT, "iteration_limit"),
+        (RunStatus.TIME_LIMIT, "time_limit"),
+    ],
+)
+def test_a_status_is_its_string(status, text):
+    assert status == text and str(status) == text and f"{status}" == text
+    assert RunStatus(text) is status
+    assert json.dumps({"status": status}) == json.dumps({"status": text})
+
+
+def test_every_run_status_so_far_has_a_plan():
+    assert all(status.is_solved for status in RunStatus)
