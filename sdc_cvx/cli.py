@@ -128,7 +128,7 @@ def catalog_options(command):
 
 
 def selection_options(command):
-    """Candidate filters (see :func:`sdc_cvx.selection.select`); they override ``[selection]``."""
+    """Candidate filters (:func:`sdc_cvx.inputs.selection.select`), over ``[selection]``."""
     options = [
         click.option("--altitude-km", nargs=2, type=float, default=None,
                      metavar="LOW HIGH", help="Keep altitudes a - R_T in [LOW, HIGH] km."),

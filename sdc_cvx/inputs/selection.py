@@ -1,11 +1,11 @@
 """Candidate selection: keep the debris a mission should consider, and say why others go.
 
-:func:`select` filters a :class:`~sdc_cvx.catalog.Catalog` by altitude, inclination,
+:func:`select` filters a :class:`~sdc_cvx.inputs.catalog.Catalog` by altitude, inclination,
 eccentricity and id or name patterns, and also drops the orbits the transfer model does
 not cover:
 
 - eccentric orbits: the cost model treats every orbit as circular of radius ``a``
-  (``sdc_cvx.transfer``), so ``e > 0.05`` is dropped unless asked otherwise;
+  (``sdc_cvx.physics.transfer``), so ``e > 0.05`` is dropped unless asked otherwise;
 - near-polar orbits (inclination within 0.5 deg of 90 deg): their J2 RAAN rate is
   about zero (Eq. 7, ``cos i ~ 0``), so the drift strategy cannot close a RAAN gap
   with them.  Prograde and retrograde orbits are both fine (the drift sides of

@@ -183,7 +183,7 @@ def drift_a_for_duration(gap, rate_target, side, inc_drift, duration, *, j2=J2, 
 
     The inverse of Eq. 10 composed with Eq. 8.  For a circular drift orbit the rate is
     a power law of ``a``, so the inverse is exact in closed form
-    (:func:`~sdc_cvx.orbits.circular_a_for_raan_rate`); no iterative root-find is needed.
+    (:func:`~sdc_cvx.physics.orbits.circular_a_for_raan_rate`); no iterative root-find is needed.
 
     Returns
     -------

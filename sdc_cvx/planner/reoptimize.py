@@ -9,7 +9,7 @@ A gradient method stepping across such a cliff fails, so the main method is a
 Lagrangian forward pass: for a price ``lam`` on time [m/s per day], each leg in turn,
 departing when the previous one arrives, minimises ``dV + lam * T`` over its feasible
 drift radii, on either side of its asymptote and with its allowed inclinations (a
-robust bounded 1-D search, :func:`~sdc_cvx.transfer.minimize_on_interval`).  The end
+robust bounded 1-D search, :func:`~sdc_cvx.physics.transfer.minimize_on_interval`).  The end
 date falls as ``lam`` rises; bisection finds the cheapest plan that ends by T_max.
 SLSQP then polishes the best plan with sides and inclinations fixed, kept only if it
 is feasible and cheaper.

@@ -1,7 +1,7 @@
 """Sequential linearisation to convergence (paper Part IV-C, Table 7), then re-optimisation.
 
 Every kept edge may be replicated over departure-date windows
-(:func:`~sdc_cvx.edges.preoptimize_windows`, :func:`default_date_windows`), each copy
+(:func:`~sdc_cvx.network.edges.preoptimize_windows`, :func:`default_date_windows`), each copy
 with its own reference, so the MILP chooses an edge together with when it is flown.
 Iteration k linearises every
 copy around its reference (drift radius, departure date) within trust intervals,
@@ -11,7 +11,7 @@ changes; phase 2 halves the chosen copies' intervals once it is stable, until th
 true ΔV stops moving; a new path restores them.  A step whose true plan breaks T_max
 is rejected.  Before the first MILP a few cheap paths are re-optimised in the true
 model and the best is held; every plan that meets the constraints in the true model
-bounds the answer, edges on no path that could beat it (:mod:`~sdc_cvx.dominance`)
+bounds the answer, edges on no path that could beat it (:mod:`~sdc_cvx.network.dominance`)
 leave the MILP, and each MILP starts from the held plan.  Once
 stable, each leg's side and inclination are checked against the
 cheapest alternative at its date and time (plus the mission's slack), the fixed path
@@ -89,7 +89,7 @@ class SequentialSettings:
         the mission is declared infeasible.
     date_windows : int, optional
         Number of departure-date windows over which every edge is replicated, each with
-        its own reference (:func:`~sdc_cvx.edges.preoptimize_windows`); default
+        its own reference (:func:`~sdc_cvx.network.edges.preoptimize_windows`); default
         :func:`default_date_windows`.  1 is the paper's single reference per edge.
     duration_model : {"secant", "two_segments"}
         The paper's secant duration (Eq. 17-18) or its two half-segments (Fig. 14),
@@ -703,7 +703,7 @@ class _Driver:
             )
 
     def true_optimum(self, path, legs, a_start, **options):
-        """:func:`~sdc_cvx.reoptimize.reoptimize` of ``path`` from the copies' assumptions."""
+        """:func:`~sdc_cvx.planner.reoptimize.reoptimize` of ``path`` from the copies' choices."""
         g = self.geometry
         return reoptimize(
             self.orbits, path, g.side[legs], g.inc_drift[legs], a_start,

@@ -72,7 +72,7 @@ def write_run(
     Files: ``legs.csv``, ``iterations.csv``, ``edges.csv`` (if ``edges`` is given),
     ``scenario.toml`` (if ``scenario_toml`` is given: the scenario as used), the
     figures ``orbits``, ``raan``, ``cost``, ``iterations`` in each of ``formats`` (if
-    ``catalog`` is given, :func:`~sdc_cvx.plots.save_figures`), then
+    ``catalog`` is given, :func:`~sdc_cvx.report.plots.save_figures`), then
     ``solution.json``, whose presence means the run is complete.
 
     Parameters

@@ -18,7 +18,7 @@ A scenario file has four tables, each optional::
     backend = "HIGHS"
     time_limit_s = 60.0
     mip_gap = 1e-6
-    [selection]                # candidate filters (sdc_cvx.selection.select); no key: none
+    [selection]                # candidate filters (sdc_cvx.inputs.selection.select); no key: none
     altitude_km = [600.0, 900.0]
     inclination_deg = [96.0, 100.0]
     max_eccentricity = 0.05    # the default; near-polar orbits are always dropped
@@ -86,7 +86,7 @@ PAPER_CASE = "the paper's Table 5 bundled with sdc_cvx"
 class Selection:
     """Candidate filters of a scenario (its ``[selection]`` table), validated.
 
-    The arguments of :func:`sdc_cvx.selection.select`; ``Selection()`` filters nothing
+    The arguments of :func:`sdc_cvx.inputs.selection.select`; ``Selection()`` filters nothing
     (eccentric orbits, ``e > 0.05``, and near-polar ones are dropped all the same).
 
     Attributes
@@ -128,7 +128,7 @@ class Selection:
                 if value is not None and value != ()}  # fmt: skip
 
     def apply(self, catalog: Catalog):
-        """``(kept, report)`` of :func:`sdc_cvx.selection.select` with these filters.
+        """``(kept, report)`` of :func:`sdc_cvx.inputs.selection.select` with these filters.
 
         Raises
         ------

@@ -20,7 +20,7 @@ scenario; it is not crossed with the grid); with neither, the base alone.  A rel
 ``catalog.path`` is taken from the study file's folder.
 
 :func:`load_study` validates every scenario before anything runs: an unknown key or an
-invalid value is a :class:`~sdc_cvx.scenario.ScenarioError` naming the dotted key and
+invalid value is a :class:`~sdc_cvx.errors.ScenarioError` naming the dotted key and
 the cases.  A value that is valid but cannot be flown (a tiny ``tmax_days``) is not an
 error of the study: its scenario fails when solved and is recorded as such.
 """

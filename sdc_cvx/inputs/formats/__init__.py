@@ -1,10 +1,10 @@
 """Real debris catalogs: TLE, CCSDS OMM and the GTOC9 debris file.
 
-Every reader returns a :class:`~sdc_cvx.catalog.Catalog` built with
+Every reader returns a :class:`~sdc_cvx.inputs.catalog.Catalog` built with
 :meth:`Catalog.from_frame`, so validation and the propagation of each RAAN from its
 epoch to the mission start (default: the latest epoch, paper Eq. 7) are the catalog's.
 Bad input never gives a traceback: every problem of a file is collected and raised at
-once in a :class:`~sdc_cvx.catalog.CatalogError` that names the file, the line (or the
+once in a :class:`~sdc_cvx.errors.CatalogError` that names the file, the line (or the
 record) and what was expected.
 
 Formats
