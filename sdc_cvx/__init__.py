@@ -36,7 +36,7 @@ _EXPORTS = {
     "SolverOptions": "sdc_cvx.milp.types",
     "plot_sweep": "sdc_cvx.study.figure",
     "preoptimize": "sdc_cvx.network.edges",
-    "solve": "sdc_cvx.planner.sequential",
+    "solve": "sdc_cvx.planner.api",
     "sweep": "sdc_cvx.study.runner",
 }
 """Each public name and the module it comes from."""
@@ -65,7 +65,8 @@ if TYPE_CHECKING:
     from .inputs.mission import Mission
     from .milp.types import SolverOptions
     from .network.edges import EdgeTable, preoptimize
-    from .planner.sequential import SequentialSettings, solve
+    from .planner.api import solve
+    from .planner.sequential import SequentialSettings
     from .solution import Solution
     from .study.figure import plot_sweep
     from .study.runner import sweep

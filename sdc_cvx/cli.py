@@ -216,6 +216,12 @@ def edges(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_ma
 # ---------------------------------------------------------------------- run
 def print_iteration(record):
     """One progress line per iteration (to stderr)."""
+    if record.status == "bound":  # the certified search
+        plan = "-" if record.dv_true_mps is None else f"{record.dv_true_mps:.2f}"
+        click.echo(f"  it {record.iteration:2d}  relaxation {record.dv_linearized_mps:.2f}  "
+                   f"best plan {plan} m/s  {record.seconds:6.2f} s  ({record.note})",
+                   err=True)  # fmt: skip
+        return
     dv_lin = "-" if record.dv_linearized_mps is None else f"{record.dv_linearized_mps:8.1f}"
     dv_true = "-" if record.dv_true_mps is None else f"{record.dv_true_mps:8.1f}"
     days = "-" if record.duration_true_days is None else f"{record.duration_true_days:7.1f}"
@@ -243,7 +249,21 @@ def print_iteration(record):
 )
 @click.option("--backend", default=None, help=f"MILP backend, a CVXPY name [{DEFAULT_BACKEND}].")
 @click.option(
-    "--time-limit", "time_limit_s", type=float, default=None, help="Time limit per MILP solve [s]."
+    "--method",
+    type=click.Choice(["certified", "paper"]),
+    default=None,
+    help="certified: the optimum with a proven bound [default]; paper: Cerf's local method.",
+)
+@click.option(
+    "--gap", type=float, default=None, help="Relative gap of a certified answer [0.001 = 0.1 %]."
+)
+@click.option(
+    "--time-limit",
+    "time_limit_s",
+    type=float,
+    default=None,
+    help="Time limit [s]: of the whole run (certified; it returns its best plan and gap), "
+    "or of each MILP (paper).",
 )
 @click.option("--mip-gap", type=float, default=None, help="Relative MIP gap [1e-6].")
 @click.option("--threads", type=int, default=None, help="Threads of the MILP backend.")
@@ -277,8 +297,8 @@ def print_iteration(record):
 )
 def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclination_deg,
         max_eccentricity, ids, exclude_ids, n, tmax_days, deorbit_days, preopt_days, dv_max_mps,
-        min_transfer_days, backend, time_limit_s, mip_gap, threads, fallback, out_dir, quiet,
-        json_out, svg, progress):  # fmt: skip
+        min_transfer_days, backend, method, gap, time_limit_s, mip_gap, threads, fallback,
+        out_dir, quiet, json_out, svg, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
     SCENARIO.toml (optional; default the paper's case) gives the catalog, mission,
@@ -287,7 +307,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     codes: 2 invalid input (nothing written), 3 infeasible mission, 4 solver failure.
     """
     from .network.edges import preoptimize
-    from .planner.sequential import solve
+    from .planner.api import solve
     from .report.run_folder import new_run_folder, write_run
     from .solution import RunStatus
 
@@ -295,7 +315,8 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         scenario_file, catalog_path=catalog_path, catalog_format=catalog_format,
         catalog_start=start, n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
         preopt_days=preopt_days, dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days,
-        backend=backend, time_limit_s=time_limit_s, mip_gap=mip_gap, threads=threads,
+        backend=backend, method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
+        threads=threads,
         fallback=tuple(fallback) or None,
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids),
     )  # fmt: skip
@@ -345,7 +366,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         if start:
             click.echo(start)
         click.echo(f"results   {folder}/solution.json")
-    if solution.status is not RunStatus.CONVERGED:
+    if solution.status not in (RunStatus.OPTIMAL, RunStatus.CONVERGED):
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
 
 

@@ -35,6 +35,8 @@ class RunStatus(StrEnum):
     status returned a plan.
     """
 
+    OPTIMAL = "optimal"  # certified: the plan is within the requested gap of a proven bound
+    FEASIBLE = "feasible"  # a plan, with its gap to a proven bound; a limit stopped the search
     CONVERGED = "converged"  # the path survived a MILP around its re-optimised point
     CONVERGED_UNCONFIRMED = "converged_unconfirmed"  # kept changing after max_confirmations
     ITERATION_LIMIT = "iteration_limit"
@@ -48,6 +50,8 @@ class RunStatus(StrEnum):
 
 _SOLVED = frozenset(
     {
+        RunStatus.OPTIMAL,
+        RunStatus.FEASIBLE,
         RunStatus.CONVERGED,
         RunStatus.CONVERGED_UNCONFIRMED,
         RunStatus.ITERATION_LIMIT,
@@ -107,7 +111,14 @@ class Solution:
     physics module; ``catalog`` is the catalog solved over (with the injection
     orbit when there is one); ``initial_legs`` is the first iteration's plan (the paper's
     "before optimisation" of Fig. 19); ``iterations`` is the history of the
-    sequential linearisation.  ``status``: ``converged`` (the path survived a MILP
+    search (the certified loop, or the paper's sequential linearisation).
+
+    ``method`` is ``"certified"`` or ``"paper"``.  A certified answer carries
+    ``lower_bound_mps``: no plan of the mission costs less, so the plan is at most
+    ``gap_mps`` (``gap_rel`` of it) above the optimum; ``status`` is then ``optimal``
+    (within the requested gap) or ``feasible`` (a limit stopped the search first).  The
+    paper's method proves no bound (``lower_bound_mps`` is None); its
+    ``status``: ``converged`` (the path survived a MILP
     around its re-optimised point), ``converged_unconfirmed`` (it kept changing after
     ``max_confirmations``), ``iteration_limit``, or ``time_limit`` (a MILP stopped at its
     time limit without a solution; the cheapest plan held is returned, see ``notes``).
@@ -127,6 +138,38 @@ class Solution:
     model_size: dict = field(default_factory=dict)
     timings: dict = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    method: str = "paper"
+    lower_bound_mps: float | None = None
+
+    @property
+    def certified(self) -> bool:
+        """True when the plan is proven within the requested gap of the optimum."""
+        return self.status == RunStatus.OPTIMAL
+
+    @property
+    def gap_mps(self) -> float | None:
+        """Plan minus proven lower bound [m/s] (None without a bound)."""
+        if self.lower_bound_mps is None:
+            return None
+        return max(self.total_dv_mps - self.lower_bound_mps, 0.0)
+
+    @property
+    def gap_rel(self) -> float | None:
+        """``gap_mps`` relative to the plan's total ΔV (None without a bound)."""
+        gap = self.gap_mps
+        if gap is None:
+            return None
+        return gap / self.total_dv_mps if self.total_dv_mps > 0 else 0.0
+
+    def quality(self) -> str:
+        """What is known of the answer, in words: ``optimal (gap 0.01 m/s)`` and the like."""
+        if self.lower_bound_mps is None:
+            return f"{self.status} (paper's method: no bound on the distance to the optimum)"
+        gap = f"gap {self.gap_mps:.2f} m/s, {100 * self.gap_rel:.2f} %"
+        if self.status == RunStatus.OPTIMAL:
+            return f"optimal ({gap}; lower bound {self.lower_bound_mps:.2f} m/s)"
+        why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
+        return f"{self.status}: {gap} ({why})"
 
     def legs_frame(self) -> pd.DataFrame:
         """Legs as a table (km, deg, days, m/s)."""
@@ -152,6 +195,11 @@ class Solution:
             "total_dv_mps": self.total_dv_mps,
             "total_duration_days": self.total_duration_days,
             "status": self.status,
+            "method": self.method,
+            "certified": self.certified,
+            "lower_bound_mps": self.lower_bound_mps,
+            "gap_mps": self.gap_mps,
+            "gap_rel": self.gap_rel,
             "backend": self.backend,
             "legs": [leg.to_dict() for leg in self.legs],
             "initial_legs": [leg.to_dict() for leg in self.initial_legs],
@@ -173,6 +221,7 @@ class Solution:
             f"path      {' -> '.join(self.path)}",
             f"total dV  {self.total_dv_mps:.1f} m/s",
             f"duration  {self.total_duration_days:.2f} days (limit {self.mission.tmax_days:g})",
-            f"status    {self.status} after {len(self.iterations)} iterations ({self.backend})",
+            f"status    {self.quality()}",
+            f"search    {self.method}, {len(self.iterations)} iterations ({self.backend})",
         ]
         return "\n".join(lines)

@@ -9,7 +9,7 @@ import traceback
 from typing import Any
 
 from ..errors import MissionInfeasible, SolverFailure
-from ..planner.sequential import solve
+from ..planner.api import solve
 from .results import ScenarioStatus
 from .scenario import Scenario
 from .study import _flatten

@@ -1,0 +1,365 @@
+"""Exact costs and lower bounds of drift transfers over boxes of dates (the certified layer).
+
+A leg i -> j that leaves at date t and arrives at date t' > t needs the drift orbit
+whose J2 rate closes the RAAN gap in exactly t' - t (Eq. 10 inverted):
+
+    rate_d = rate_j + s * mu_s(t) / (t' - t),
+
+where ``s`` is the side of the asymptote (+1: the drift orbit precesses faster than the
+target) and ``mu_s(t)`` the gap ``G(t) = Omega_j(t) - Omega_i(t)`` wrapped into
+[0, 2 pi) for that side.  With the rate fixed and the drift inclination chosen
+(Table 3, or either debris' inclination), the radius follows in closed form
+(:func:`~sdc_cvx.orbits.circular_a_for_raan_rate`), and so does the cost (Eq. 11-13).
+:func:`leg_cost_at` is that exact cost for given dates.
+
+:func:`leg_box_bound` is a lower bound of the same cost over every (t, t') in a box
+``[t1, t2] x [t3, t4]`` with ``t' - t >= T_min``.  Between two wraps of the gap
+``mu_s`` is linear in t, so ``mu_s(t) / (t' - t)`` is linear-fractional: over the
+polygon (box cut by ``t' - t >= T_min``) its range is spanned by the polygon's
+vertices.  That range of drift rates is an interval of drift radii for each
+inclination, and the minimum of the cost over an interval is exact
+(:class:`LegCosts`): the ends, the kinks of the cost at the two debris radii and its
+interior local minima, found once per edge.  So the bound is never above the true
+cost of any leg in the box, and it tends to the true cost as the box shrinks.
+
+Dates are in days after t0, rates in rad/day, radii in m, costs in m/s.
+
+References
+----------
+.. [1] M. Cerf, "Multiple space debris collecting mission - Debris selection and
+   trajectory optimization", Journal of Optimization Theory and Applications,
+   156(3), 761-796, 2013.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .orbits import MU_EARTH, SECONDS_PER_DAY, circular_a_for_raan_rate, raan_rate
+from .transfer import NodeOrbits, minimize_on_interval, transfer_dv
+
+TWO_PI = 2.0 * np.pi
+GRID_POINTS = 513
+"""Radii per edge and inclination scanned for the interior local minima of the cost."""
+MAX_MINIMA = 4
+"""Interior local minima kept per edge and inclination (the cost has at most one per piece)."""
+INCLINATION_RULES = ("table3", "free")
+
+
+@dataclass(frozen=True)
+class LegCosts:
+    """Transfer cost of every edge as a function of the drift radius, per drift inclination.
+
+    ``cost(e, c, a)`` is Eq. 11-13 for edge ``e`` with the drift inclination of its
+    origin (``c = 0``) or of its target (``c = 1``) and drift radius ``a`` [m].
+    ``minimum_on(e, c, lo, hi)`` is its exact minimum over ``[lo, hi]``: the minimum
+    of the two ends and of the points in ``candidates`` that lie inside (the kinks at
+    the two debris radii and the interior local minima).
+
+    Attributes
+    ----------
+    origin, target : NodeOrbits
+        Orbits of the edges' ends, shape (E,); rates in rad/s as everywhere.
+    a_low, a_high : float
+        Drift radius bounds [m].
+    candidates : ndarray
+        Shape (E, 2, K): radii where the cost may have a local minimum inside the band
+        (``nan`` padding).
+    candidate_cost : ndarray
+        Shape (E, 2, K): the cost there (``inf`` padding).
+    """
+
+    origin: NodeOrbits
+    target: NodeOrbits
+    a_low: float
+    a_high: float
+    candidates: np.ndarray
+    candidate_cost: np.ndarray
+    mu: float = MU_EARTH
+
+    @classmethod
+    def build(cls, origin: NodeOrbits, target: NodeOrbits, a_low: float, a_high: float, *,
+              mu: float = MU_EARTH, chunk: int = 2048) -> LegCosts:  # fmt: skip
+        """Scan every edge's cost over the band and keep its possible minimisers."""
+        count = len(origin.a)
+        candidates = np.full((count, 2, 2 + MAX_MINIMA), np.nan)
+        for start in range(0, count, chunk):
+            rows = slice(start, min(count, start + chunk))
+            o, t = origin.take(rows), target.take(rows)
+            for c, inc in enumerate((o.inc, t.inc)):
+                candidates[rows, c] = _possible_minimisers(o, t, inc, a_low, a_high, mu)
+        self = cls(origin, target, float(a_low), float(a_high), candidates,
+                   np.empty(0), mu)  # fmt: skip
+        edges = np.arange(count)[:, None, None]
+        choice = np.arange(2)[None, :, None]
+        cost = self.cost(edges, choice, np.where(np.isnan(candidates), a_low, candidates))
+        object.__setattr__(self, "candidate_cost", np.where(np.isnan(candidates), np.inf, cost))
+        return self
+
+    def inclination(self, e, c):
+        """Drift inclination [rad] of choice ``c`` (0: origin's, 1: target's) for edge ``e``."""
+        return np.where(np.asarray(c) == 0, self.origin.inc[e], self.target.inc[e])
+
+    def cost(self, e, c, a):
+        """Transfer cost [m/s] of edge ``e``, inclination choice ``c``, drift radius ``a`` [m]."""
+        o, t = self.origin, self.target
+        return transfer_dv(o.a[e], o.inc[e], t.a[e], t.inc[e], a, self.inclination(e, c),
+                           mu=self.mu)  # fmt: skip
+
+    def minimum_on(self, e, c, lo, hi):
+        """Exact minimum [m/s] of the cost over drift radii ``[lo, hi]`` (``inf`` if empty).
+
+        Returns
+        -------
+        value, argmin : ndarray
+            The minimum and a radius [m] where it is reached (``nan`` if empty).
+        """
+        e, c, lo, hi = np.broadcast_arrays(np.asarray(e), np.asarray(c), lo, hi)
+        empty = ~(lo <= hi)
+        lo_s, hi_s = np.where(empty, self.a_low, lo), np.where(empty, self.a_low, hi)
+        f_lo, f_hi = self.cost(e, c, lo_s), self.cost(e, c, hi_s)
+        points = self.candidates[e, c]  # (..., K)
+        inside = (points >= lo_s[..., None]) & (points <= hi_s[..., None])
+        f_in = np.where(inside, self.candidate_cost[e, c], np.inf)
+        k = np.argmin(f_in, axis=-1)
+        f_best_in = np.take_along_axis(f_in, k[..., None], axis=-1)[..., 0]
+        a_best_in = np.take_along_axis(points, k[..., None], axis=-1)[..., 0]
+        value = np.minimum(np.minimum(f_lo, f_hi), f_best_in)
+        argmin = np.where(f_best_in <= np.minimum(f_lo, f_hi), a_best_in,
+                          np.where(f_lo <= f_hi, lo_s, hi_s))  # fmt: skip
+        return np.where(empty, np.inf, value), np.where(empty, np.nan, argmin)
+
+    def floor(self, e):
+        """Cheapest transfer [m/s] of edges ``e`` at any date, either inclination, any radius."""
+        return np.minimum(*(self.minimum_on(e, c, self.a_low, self.a_high)[0] for c in (0, 1)))
+
+
+def _possible_minimisers(origin: NodeOrbits, target: NodeOrbits, inc, a_low, a_high, mu):
+    """Kinks and interior local minima of one inclination's cost over the band, (M, K)."""
+    grid = np.linspace(a_low, a_high, GRID_POINTS)
+
+    def cost(a):
+        return transfer_dv(origin.a[:, None], origin.inc[:, None], target.a[:, None],
+                           target.inc[:, None], a, inc[:, None], mu=mu)  # fmt: skip
+
+    values = cost(np.broadcast_to(grid, (len(inc), GRID_POINTS)))
+    local = (values[:, 1:-1] < values[:, :-2]) & (values[:, 1:-1] <= values[:, 2:])
+    out = np.full((len(inc), 2 + MAX_MINIMA), np.nan)
+    kinks = np.stack([origin.a, target.a], axis=1)
+    out[:, :2] = np.where((kinks >= a_low) & (kinks <= a_high), kinks, np.nan)
+    step = grid[1] - grid[0]
+    rows, cols = np.nonzero(local)
+    rank = np.zeros(len(rows), dtype=int)
+    if len(rows):
+        first_of_row = np.r_[True, rows[1:] != rows[:-1]]
+        run = np.cumsum(first_of_row) - 1
+        rank = np.arange(len(rows)) - np.flatnonzero(first_of_row)[run]
+    keep = rank < MAX_MINIMA
+    rows, cols, rank = rows[keep], cols[keep], rank[keep]
+    if len(rows):
+        centre = grid[cols + 1]
+        lo, hi = centre - step, centre + step
+        sub = NodeOrbits(*(np.asarray(f)[rows] for f in origin))
+        sub_t = NodeOrbits(*(np.asarray(f)[rows] for f in target))
+        sub_inc = inc[rows]
+
+        def sub_cost(a):
+            return transfer_dv(sub.a[:, None], sub.inc[:, None], sub_t.a[:, None],
+                               sub_t.inc[:, None], a, sub_inc[:, None], mu=mu)  # fmt: skip
+
+        a_min, _ = minimize_on_interval(sub_cost, lo, hi, n_grid=9, n_golden=40)
+        out[rows, 2 + rank] = a_min
+    return out
+
+
+def _rates_per_day(orbits: NodeOrbits):
+    return orbits.rate * SECONDS_PER_DAY
+
+
+def allowed_choices(legs: LegCosts, e, side, rule: str):
+    """Inclination choices (0: origin's, 1: target's) allowed on ``side`` for edges ``e``.
+
+    ``table3``: the larger inclination where the drift precesses faster than the target
+    (side +1), the smaller where it does not (side -1): one choice per side.  ``free``:
+    both.  Returns a list of arrays of choices (each shaped like ``e``).
+    """
+    if rule == "free":
+        return [np.zeros_like(e), np.ones_like(e)]
+    larger_is_target = legs.target.inc[e] > legs.origin.inc[e]
+    pick_target = larger_is_target if side > 0 else ~larger_is_target
+    return [pick_target.astype(int)]
+
+
+def wrapped_gap(legs: LegCosts, e, t, side):
+    """RAAN gap mu_s(t) >= 0 [rad] that a drift on ``side`` must close, leaving at ``t`` [days]."""
+    gap = legs.target.raan[e] - legs.origin.raan[e] + (
+        _rates_per_day(legs.target)[e] - _rates_per_day(legs.origin)[e]) * t  # fmt: skip
+    positive = np.mod(gap, TWO_PI)
+    return positive if side > 0 else np.mod(TWO_PI - positive, TWO_PI)
+
+
+def radius_interval(legs: LegCosts, e, c, rate_lo, rate_hi, *, j2):
+    """Drift radii [m] in the band whose rate [rad/day] lies in ``[rate_lo, rate_hi]``.
+
+    The rate of a circular orbit of fixed inclination is monotonic in its radius, so the
+    set is an interval; ``(nan, nan)`` where it is empty.
+    """
+    inc = legs.inclination(e, c)
+    r_low = raan_rate(legs.a_low, 0.0, inc, j2=j2, mu=legs.mu) * SECONDS_PER_DAY
+    r_high = raan_rate(legs.a_high, 0.0, inc, j2=j2, mu=legs.mu) * SECONDS_PER_DAY
+    reach_lo, reach_hi = np.minimum(r_low, r_high), np.maximum(r_low, r_high)
+    lo, hi = np.maximum(rate_lo, reach_lo), np.minimum(rate_hi, reach_hi)
+    empty = ~(lo <= hi)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        a1 = circular_a_for_raan_rate(lo / SECONDS_PER_DAY, inc, j2=j2, mu=legs.mu)
+        a2 = circular_a_for_raan_rate(hi / SECONDS_PER_DAY, inc, j2=j2, mu=legs.mu)
+    a1 = np.where(np.isnan(a1), np.where(lo == r_low, legs.a_low, legs.a_high), a1)
+    a2 = np.where(np.isnan(a2), np.where(hi == r_low, legs.a_low, legs.a_high), a2)
+    polar = r_low == r_high  # cos I = 0: every radius has the rate 0
+    a1, a2 = np.where(polar, legs.a_low, a1), np.where(polar, legs.a_high, a2)
+    a_lo = np.clip(np.minimum(a1, a2), legs.a_low, legs.a_high)
+    a_hi = np.clip(np.maximum(a1, a2), legs.a_low, legs.a_high)
+    return np.where(empty, np.nan, a_lo), np.where(empty, np.nan, a_hi)
+
+
+def leg_cost_at(legs: LegCosts, e, t, t_arrive, *, rule: str, j2: float, t_min: float = 0.0):
+    """Exact cheapest cost [m/s] of edge ``e`` leaving at ``t`` and arriving at ``t_arrive`` [days].
+
+    The drift rate is fixed by the dates (Eq. 10 inverted) on each side; the cost is the
+    cheaper allowed inclination whose radius lies in the band.  A leg of zero duration
+    is possible only where the RAANs coincide at ``t`` (within 1e-9 rad): any drift
+    radius then works and the cost is the cheapest one.
+
+    Returns
+    -------
+    cost, a_drift, inc_drift, side : ndarray
+        ``inf`` / ``nan`` / ``nan`` / 0 where no drift orbit of the band does it.
+    """
+    e, t, t_arrive = np.broadcast_arrays(np.asarray(e), np.asarray(t, float),
+                                         np.asarray(t_arrive, float))  # fmt: skip
+    best = np.full(e.shape, np.inf)
+    best_a, best_inc, best_side = (
+        np.full(e.shape, np.nan),
+        np.full(e.shape, np.nan),
+        np.zeros(e.shape),
+    )
+    duration = t_arrive - t
+    ok = duration >= max(t_min, 0.0)
+    rate_j = _rates_per_day(legs.target)[e]
+    for side in (1.0, -1.0):
+        mu = wrapped_gap(legs, e, t, side)
+        closed = (mu < 1e-9) | (TWO_PI - mu < 1e-9)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rate = rate_j + side * mu / duration
+        for c in allowed_choices(legs, e, side, rule):
+            zero = closed & (duration == 0.0)
+            lo, hi = radius_interval(legs, e, c, rate, rate, j2=j2)
+            lo = np.where(zero, legs.a_low, lo)
+            hi = np.where(zero, legs.a_high, hi)
+            value, a = legs.minimum_on(e, c, lo, hi)
+            value = np.where(ok & ((duration > 0) | zero), value, np.inf)
+            better = value < best
+            best = np.where(better, value, best)
+            best_a = np.where(better, a, best_a)
+            best_inc = np.where(better, legs.inclination(e, c), best_inc)
+            best_side = np.where(better, side, best_side)
+    return best, best_a, best_inc, best_side
+
+
+def leg_box_bound(legs: LegCosts, e, t1, t2, t3, t4, *, rule: str, j2: float,
+                  t_min: float = 0.0):  # fmt: skip
+    """Lower bound [m/s] of edge ``e``'s cost over departures in [t1, t2], arrivals in [t3, t4].
+
+    Only (t, t') with ``t' - t >= t_min`` count.  ``inf`` where no leg in the box is
+    possible.  See the module docstring for why the bound is valid and exact in the limit.
+
+    Parameters
+    ----------
+    legs : LegCosts
+    e : array_like of int
+        Edge of each box.
+    t1, t2, t3, t4 : array_like
+        Departure and arrival date ranges [days], ``t1 <= t2``, ``t3 <= t4``.
+    rule : {"table3", "free"}
+        Drift inclination rule.
+    j2 : float
+    t_min : float
+        Minimum transfer duration T_min [days].
+
+    Returns
+    -------
+    ndarray
+        The bound [m/s], shaped like the broadcast inputs.
+    """
+    e, t1, t2, t3, t4 = np.broadcast_arrays(
+        np.asarray(e), *(np.asarray(v, float) for v in (t1, t2, t3, t4))
+    )
+    best = np.full(e.shape, np.inf)
+    rate_rel_o = _rates_per_day(legs.target)[e] - _rates_per_day(legs.origin)[e]
+    rate_j = _rates_per_day(legs.target)[e]
+    gap0 = legs.target.raan[e] - legs.origin.raan[e]
+    g1, g2 = gap0 + rate_rel_o * t1, gap0 + rate_rel_o * t2
+    for side in (1.0, -1.0):
+        # pieces of [t1, t2] between wraps of the gap for this side: on piece p the gap to
+        # close is s * (G(t) - 2 pi m) with m = floor(G / 2 pi) (+1 for s = -1) constant
+        signed1, signed2 = side * g1, side * g2
+        k_first = np.floor(np.minimum(signed1, signed2) / TWO_PI)
+        k_last = np.floor(np.maximum(signed1, signed2) / TWO_PI)
+        pieces = int(np.max(k_last - k_first)) + 1 if e.size else 0
+        for p in range(pieces):
+            k = k_first + p
+            valid = k <= k_last
+            # dates where side * G(t) = 2 pi k and 2 pi (k + 1), clipped to [t1, t2]
+            slope = side * rate_rel_o
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ta = np.where(slope != 0, (TWO_PI * k - side * gap0) / slope, -np.inf)
+                tb = np.where(slope != 0, (TWO_PI * (k + 1) - side * gap0) / slope, np.inf)
+            lo_t, hi_t = np.minimum(ta, tb), np.maximum(ta, tb)
+            pa, pb = np.maximum(t1, lo_t), np.minimum(t2, hi_t)
+            valid &= pa <= pb
+
+            def gap_on_piece(t, k=k, side=side):
+                return side * (gap0 + rate_rel_o * t) - TWO_PI * k
+
+            rho_lo, rho_hi, feasible = _ratio_range(gap_on_piece, pa, pb, t3, t4, t_min)
+            feasible &= valid
+            for c in allowed_choices(legs, e, side, rule):
+                r1, r2 = rate_j + side * rho_lo, rate_j + side * rho_hi
+                lo, hi = radius_interval(legs, e, c, np.minimum(r1, r2), np.maximum(r1, r2),
+                                         j2=j2)  # fmt: skip
+                value, _ = legs.minimum_on(e, c, lo, hi)
+                best = np.where(feasible, np.minimum(best, value), best)
+    return best
+
+
+def _ratio_range(gap_on_piece, pa, pb, t3, t4, t_min):
+    """Range of ``gap(t) / (t' - t)`` over t in [pa, pb], t' in [t3, t4], t' - t >= t_min.
+
+    The ratio is linear-fractional, so its extremes are at the polygon's vertices: the
+    box corners that satisfy the cut and the cut line's crossings with the box edges.
+    A vertex with t' = t gives +inf (or the whole range [0, inf) if the gap is 0 there).
+    """
+    cands_t, cands_tp = [], []
+    for t in (pa, pb):
+        for tp in (t3, t4):
+            cands_t.append(t)
+            cands_tp.append(tp)
+    # the cut line t' = t + t_min crossing the four box edges
+    cands_t += [pa, pb, t3 - t_min, t4 - t_min]
+    cands_tp += [pa + t_min, pb + t_min, t3, t4]
+    t = np.stack(np.broadcast_arrays(*cands_t))
+    tp = np.stack(np.broadcast_arrays(*cands_tp))
+    tol = 1e-12 * np.maximum(1.0, np.abs(tp))
+    inside = ((t >= pa - tol) & (t <= pb + tol) & (tp >= t3 - tol) & (tp <= t4 + tol)
+              & (tp - t >= t_min - tol))  # fmt: skip
+    gap = np.maximum(gap_on_piece(np.clip(t, pa, pb)), 0.0)
+    denom = tp - t
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(denom > 0, gap / np.maximum(denom, 1e-300), np.inf)
+    at_zero = denom <= 0
+    low_vals = np.where(inside, np.where(at_zero & (gap <= 0), 0.0, ratio), np.inf)
+    high_vals = np.where(inside, ratio, -np.inf)
+    feasible = np.any(inside, axis=0)
+    return np.min(low_vals, axis=0), np.max(high_vals, axis=0), feasible

@@ -1,0 +1,366 @@
+"""Global optimum of a fixed path: the best dates and drift orbits, with a certificate.
+
+For an ordered path v_0 -> ... -> v_L, the vehicle leaves v_0 after its operations,
+each leg arrives when its drift closes the RAAN gap (Eq. 10), the next leg leaves after
+the operations at the debris reached, and the mission ends by T_max.  Choosing each
+leg's arrival date is the same as choosing its drift orbit, so the problem is a chain
+of dates ``x_0 <= x_1 <= ... <= x_L`` (x_k: the date the vehicle is ready to leave the
+k-th debris; x_L: the end) with cost ``sum_k c_k(x_k, x_{k+1} - ops_{k+1})``, where
+``c_k`` is the exact cost of leg k between two dates (:func:`leg_cost_at`).
+
+A dynamic programme over date cells brackets the optimum:
+
+- lower bound: each position's dates are split into cells; a leg between a cell of
+  position k and a cell of position k+1 costs at least :func:`leg_box_bound`, and the
+  cheapest chain of cells under those bounds is a lower bound of every schedule;
+- upper bound: the same programme over exact costs between dates of a grid (cell ends
+  and centres, and the dates where two RAANs cross, for zero-length legs) is a schedule
+  that flies;
+- the cells of the lower bound's chain are halved, cells that cannot hold a schedule
+  better than the upper bound are dropped, and the two are computed again until they
+  differ by at most the tolerance (branch and bound over the date cells).
+
+References
+----------
+.. [1] M. Cerf, "Multiple space debris collecting mission - Debris selection and
+   trajectory optimization", Journal of Optimization Theory and Applications,
+   156(3), 761-796, 2013.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..physics.leg_bounds import TWO_PI, LegCosts, leg_box_bound, leg_cost_at
+from ..physics.orbits import SECONDS_PER_DAY
+
+INITIAL_CELLS = 24
+MIN_CELL_DAYS = 1e-5
+SPLIT = 4
+"""Parts a cell of the lower bound's chain is split into each round."""
+GRID_CAP = 72
+"""Most grid dates per position in the upper-bound programme (the best cells' first)."""
+
+
+@dataclass(frozen=True)
+class PathProblem:
+    """One ordered path and the mission constraints that bind its schedule.
+
+    Attributes
+    ----------
+    legs : LegCosts
+        Cost tables of (at least) the path's edges.
+    edges : tuple of int
+        Edge of ``legs`` flown by each leg, length L.
+    ops_days : tuple of float
+        Operations time T_deorb at each debris of the path [days], length L + 1.
+    tmax_days, tmin_days : float
+        Mission duration limit T_max and minimum transfer duration T_min [days].
+    rule : {"table3", "free"}
+        Drift inclination rule.
+    j2 : float
+    """
+
+    legs: LegCosts
+    edges: tuple[int, ...]
+    ops_days: tuple[float, ...]
+    tmax_days: float
+    tmin_days: float
+    rule: str
+    j2: float
+
+    @property
+    def n_legs(self) -> int:
+        return len(self.edges)
+
+    def earliest(self) -> np.ndarray:
+        """Earliest date of each position [days] (T_min per leg, operations at each debris)."""
+        steps = np.asarray(self.ops_days[1:]) + self.tmin_days
+        return self.ops_days[0] + np.r_[0.0, np.cumsum(steps)]
+
+
+@dataclass(frozen=True)
+class PathSchedule:
+    """Best schedule found for a path and the certified lower bound of every schedule.
+
+    Attributes
+    ----------
+    upper_mps : float
+        Transfer ΔV of the schedule [m/s] (``inf`` if none was found).
+    lower_mps : float
+        No schedule of this path costs less [m/s].
+    departure_days, arrival_days : ndarray
+        Per leg [days after t0].
+    a_drift, inc_drift, side : ndarray
+        Per leg: drift radius [m], inclination [rad], side of the asymptote.
+    dv_mps : ndarray
+        Per leg [m/s].
+    end_day : float
+        Arrival at the last debris plus its operations [days].
+    rounds, cells : int
+        Refinement rounds, and date cells in the last one.
+    seconds : float
+    """
+
+    upper_mps: float
+    lower_mps: float
+    departure_days: np.ndarray = field(repr=False)
+    arrival_days: np.ndarray = field(repr=False)
+    a_drift: np.ndarray = field(repr=False)
+    inc_drift: np.ndarray = field(repr=False)
+    side: np.ndarray = field(repr=False)
+    dv_mps: np.ndarray = field(repr=False)
+    end_day: float
+    rounds: int
+    cells: int
+    seconds: float
+
+    @property
+    def gap_mps(self) -> float:
+        return self.upper_mps - self.lower_mps
+
+    @property
+    def feasible(self) -> bool:
+        return bool(np.isfinite(self.upper_mps))
+
+
+class _Cells:
+    """Date cells of one position: sorted, disjoint ``[lo, hi]`` with stable ids."""
+
+    def __init__(self, lo, hi, ids, next_id):
+        self.lo, self.hi, self.ids, self.next_id = lo, hi, ids, next_id
+
+    @classmethod
+    def uniform(cls, start, stop, count, first_id=0):
+        edges = np.array([start, start]) if stop <= start else np.linspace(start, stop, count + 1)
+        n = len(edges) - 1
+        return cls(edges[:-1].copy(), edges[1:].copy(), np.arange(first_id, first_id + n),
+                   first_id + n)  # fmt: skip
+
+    def __len__(self):
+        return len(self.lo)
+
+    def refine(self, split, keep):
+        """Split the cells in ``split`` in ``SPLIT`` parts; drop those not in ``keep``."""
+        lo, hi, ids = [], [], []
+        next_id = self.next_id
+        for k in range(len(self.lo)):
+            if not keep[k]:
+                continue
+            if split[k] and self.hi[k] - self.lo[k] > MIN_CELL_DAYS:
+                edges = np.linspace(self.lo[k], self.hi[k], SPLIT + 1)
+                lo += list(edges[:-1])
+                hi += list(edges[1:])
+                ids += list(range(next_id, next_id + SPLIT))
+                next_id += SPLIT
+            else:
+                lo.append(self.lo[k])
+                hi.append(self.hi[k])
+                ids.append(self.ids[k])
+        return _Cells(np.array(lo), np.array(hi), np.array(ids, dtype=int), next_id)
+
+
+class _BoundCache:
+    """Leg box bounds between the cells of two positions, recomputed only for new cells."""
+
+    def __init__(self):
+        self.rows = self.cols = np.empty(0, dtype=int)
+        self.matrix = np.empty((0, 0))
+
+    def update(self, problem: PathProblem, k: int, cells_from: _Cells, cells_to: _Cells):
+        old_r = {c: n for n, c in enumerate(self.rows)}
+        old_c = {c: n for n, c in enumerate(self.cols)}
+        r_map = np.array([old_r.get(c, -1) for c in cells_from.ids], dtype=int)
+        c_map = np.array([old_c.get(c, -1) for c in cells_to.ids], dtype=int)
+        out = np.full((len(cells_from), len(cells_to)), np.nan)
+        known = (r_map[:, None] >= 0) & (c_map[None, :] >= 0)
+        if known.any():
+            rr, cc = np.nonzero(known)
+            out[rr, cc] = self.matrix[r_map[rr], c_map[cc]]
+        rr, cc = np.nonzero(~known)
+        if len(rr):
+            ops = problem.ops_days[k + 1]
+            out[rr, cc] = leg_box_bound(
+                problem.legs, problem.edges[k], cells_from.lo[rr], cells_from.hi[rr],
+                cells_to.lo[cc] - ops, cells_to.hi[cc] - ops, rule=problem.rule,
+                j2=problem.j2, t_min=problem.tmin_days)  # fmt: skip
+        self.rows, self.cols, self.matrix = cells_from.ids.copy(), cells_to.ids.copy(), out
+        return out
+
+
+def crossing_dates(legs: LegCosts, e: int, start: float, stop: float) -> np.ndarray:
+    """Dates in [start, stop] [days] where the RAANs of edge ``e``'s two debris coincide."""
+    rel = (legs.target.rate[e] - legs.origin.rate[e]) * SECONDS_PER_DAY
+    gap0 = legs.target.raan[e] - legs.origin.raan[e]
+    if rel == 0.0:
+        return np.empty(0)
+    g1, g2 = sorted((gap0 + rel * start, gap0 + rel * stop))
+    ks = np.arange(np.ceil(g1 / TWO_PI), np.floor(g2 / TWO_PI) + 1)
+    return np.sort((TWO_PI * ks - gap0) / rel)
+
+
+def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, cutoff_mps: float = np.inf,
+               max_rounds: int = 200, time_limit_s: float = np.inf,
+               initial_cells: int = INITIAL_CELLS) -> PathSchedule:  # fmt: skip
+    """Certified minimum ΔV schedule of a fixed path (branch and bound over date cells).
+
+    Parameters
+    ----------
+    problem : PathProblem
+    tol_mps : float
+        Stop when the best schedule is within this of the lower bound [m/s].
+    cutoff_mps : float
+        Stop as soon as the lower bound exceeds this [m/s] (the path cannot beat a plan
+        in hand); the schedule returned is then the best found so far.
+    max_rounds : int
+    time_limit_s : float
+
+    Returns
+    -------
+    PathSchedule
+    """
+    start_clock = time.perf_counter()
+    L = problem.n_legs
+    earliest = problem.earliest()
+    tmax = problem.tmax_days
+    first = problem.ops_days[0]
+    if earliest[-1] > tmax:
+        return _no_schedule(L, np.inf, 0, 0, start_clock)
+    cells = [_Cells(np.array([first]), np.array([first]), np.array([0]), 1)]
+    for k in range(1, L + 1):
+        cells.append(_Cells.uniform(earliest[k], tmax, initial_cells))
+    caches = [_BoundCache() for _ in range(L)]
+    best_upper, best_plan = np.inf, None
+    lower = -np.inf
+    rounds = 0
+    special = _special_dates(problem, earliest)
+    for rounds in range(1, max_rounds + 1):  # noqa: B007 - reported after the loop
+        bounds = [caches[k].update(problem, k, cells[k], cells[k + 1]) for k in range(L)]
+        backward = [None] * (L + 1)
+        backward[L] = np.zeros(len(cells[L]))
+        choice = [None] * L
+        for k in range(L - 1, -1, -1):
+            total = bounds[k] + backward[k + 1][None, :]
+            choice[k] = np.argmin(total, axis=1)
+            backward[k] = total[np.arange(len(cells[k])), choice[k]]
+        lower = float(backward[0][0])
+        forward = [np.zeros(1)]
+        for k in range(L):
+            forward.append(np.min(forward[k][:, None] + bounds[k], axis=0))
+        if not np.isfinite(lower):
+            break
+        plan = _grid_schedule(problem, cells, special, forward, backward)
+        if plan is not None and plan[0] < best_upper:
+            best_upper, best_plan = plan
+        if best_upper - lower <= tol_mps or lower > cutoff_mps:
+            break
+        if time.perf_counter() - start_clock > time_limit_s:
+            break
+        chain = [0]
+        for k in range(L):
+            chain.append(int(choice[k][chain[-1]]))
+        limit = min(best_upper, cutoff_mps) + 1e-9
+        new_cells = [cells[0]]
+        for k in range(1, L + 1):
+            through = forward[k] + backward[k]
+            keep = through <= limit
+            split = np.zeros(len(cells[k]), dtype=bool)
+            split[chain[k]] = True
+            new_cells.append(cells[k].refine(split, keep))
+        unchanged = (np.array_equal(a.ids, b.ids) for a, b in zip(cells, new_cells, strict=True))
+        if all(unchanged):
+            break  # nothing left to split: the cells are at their narrowest
+        cells = new_cells
+    lower = max(lower, -np.inf) if np.isfinite(lower) else (np.inf if best_plan is None else lower)
+    if best_plan is None:
+        return _no_schedule(L, lower, rounds, sum(map(len, cells)), start_clock)
+    lower = min(lower, best_upper)
+    dates = best_plan
+    return _schedule(problem, dates, best_upper, lower, rounds, sum(map(len, cells)), start_clock)
+
+
+def _special_dates(problem: PathProblem, earliest):
+    """Per position, dates a schedule may need exactly: RAAN crossings (zero-length legs)."""
+    out = [np.empty(0) for _ in range(problem.n_legs + 1)]
+    if problem.tmin_days > 0:
+        return out
+    for k, e in enumerate(problem.edges):
+        dates = crossing_dates(problem.legs, e, earliest[k], problem.tmax_days)
+        out[k] = np.concatenate([out[k], dates])
+        out[k + 1] = np.concatenate([out[k + 1], dates + problem.ops_days[k + 1]])
+    return out
+
+
+def _grid_schedule(problem: PathProblem, cells, special, forward, backward):
+    """Cheapest schedule over exact costs between grid dates of the live cells.
+
+    Returns ``(cost, dates)`` with dates per position, or None.
+    """
+    L = problem.n_legs
+    points = []
+    for k in range(L + 1):
+        c = cells[k]
+        if k == 0:
+            points.append(np.array([c.lo[0]]))
+            continue
+        order = np.argsort(forward[k] + backward[k])[: GRID_CAP // 3]
+        pts = np.concatenate([c.lo[order], c.hi[order], 0.5 * (c.lo[order] + c.hi[order])])
+        sp = special[k]
+        if len(sp):
+            live = np.zeros(len(sp), dtype=bool)
+            for lo, hi in zip(c.lo[order], c.hi[order], strict=True):
+                live |= (sp >= lo) & (sp <= hi)
+            pts = np.concatenate([pts, sp[live]])
+        points.append(np.unique(pts[pts <= problem.tmax_days]))
+    costs = []
+    for k in range(L):
+        t = points[k][:, None]
+        t_arrive = points[k + 1][None, :] - problem.ops_days[k + 1]
+        cost, *_ = leg_cost_at(problem.legs, problem.edges[k], t, t_arrive, rule=problem.rule,
+                               j2=problem.j2, t_min=problem.tmin_days)  # fmt: skip
+        costs.append(cost)
+    value = np.zeros(len(points[L]))
+    choice = [None] * L
+    for k in range(L - 1, -1, -1):
+        total = costs[k] + value[None, :]
+        choice[k] = np.argmin(total, axis=1)
+        value = total[np.arange(len(points[k])), choice[k]]
+    if not np.isfinite(value[0]):
+        return None
+    index = [0]
+    for k in range(L):
+        index.append(int(choice[k][index[-1]]))
+    return float(value[0]), np.array([points[k][index[k]] for k in range(L + 1)])
+
+
+def _schedule(problem: PathProblem, dates, upper, lower, rounds, cells, start_clock):
+    L = problem.n_legs
+    ops = np.asarray(problem.ops_days)
+    departure = dates[:-1]
+    arrival = dates[1:] - ops[1:]
+    cost, a, inc, side = leg_cost_at(problem.legs, np.asarray(problem.edges), departure, arrival,
+                                     rule=problem.rule, j2=problem.j2,
+                                     t_min=problem.tmin_days)  # fmt: skip
+    return PathSchedule(
+        float(np.sum(cost)),
+        float(lower),
+        departure,
+        arrival,
+        a,
+        inc,
+        side,
+        cost,
+        float(dates[L]),
+        rounds,
+        cells,
+        time.perf_counter() - start_clock,
+    )
+
+
+def _no_schedule(L, lower, rounds, cells, start_clock):
+    nan = np.full(L, np.nan)
+    return PathSchedule(np.inf, float(lower), nan, nan, nan, nan, np.zeros(L), nan, np.nan,
+                        rounds, cells, time.perf_counter() - start_clock)  # fmt: skip

@@ -1,0 +1,73 @@
+"""The certified search against the reference cases' certified optima.
+
+``SHARED_DATA/reference_cases`` holds catalogs whose optima were certified by an
+independent exhaustive search (its README states the model, sdc_cvx's defaults).  On
+each, in each inclination rule given: the answer is within 0.1 % of the optimum, it is
+certified (status ``optimal``), and its lower bound is at most the optimum.  The fixed
+path's certificate is also checked on the optimal path alone.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from sdc_cvx import Catalog, Mission, solve
+from sdc_cvx.milp.types import SolverOptions
+from sdc_cvx.physics.leg_bounds import LegCosts
+from sdc_cvx.physics.orbits import R_EARTH
+from sdc_cvx.physics.transfer import NodeOrbits
+from sdc_cvx.planner.fixed_path import PathProblem, solve_path
+from sdc_cvx.solution import RunStatus
+
+from ..conftest import SHARED_DATA
+
+CASES = SHARED_DATA / "reference_cases"
+OPTIMA = json.loads((CASES / "optima.json").read_text()) if CASES.is_dir() else {}
+RUNS = [(case, rule) for case, data in sorted(OPTIMA.items()) for rule in ("table3", "free")
+        if rule in data]  # fmt: skip
+# the exhaustive search's own tolerance: its plan and bound differ by at most 0.01 m/s
+REFERENCE_TOL_MPS = 0.01
+
+
+def load(case):
+    data = OPTIMA[case]
+    catalog = Catalog.from_csv(CASES / data["catalog"])
+    return data, catalog
+
+
+@pytest.mark.requires_shared_data("reference_cases/optima.json")
+@pytest.mark.parametrize(("case", "rule"), RUNS)
+def test_fixed_path_certificate_matches_the_reference_schedule(case, rule):
+    data, catalog = load(case)
+    ref = data[rule]
+    orbits = NodeOrbits.from_elements(catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad)
+    path = [list(catalog.ids).index(k) for k in ref["path"]]
+    i, j = np.array(path[:-1]), np.array(path[1:])
+    legs = LegCosts.build(orbits.take(i), orbits.take(j), R_EARTH + 400e3, R_EARTH + 1200e3)
+    problem = PathProblem(legs, tuple(range(len(i))), (0.0,) * len(path), data["tmax_days"],
+                          0.0, rule, 1.08263e-3)  # fmt: skip
+    schedule = solve_path(problem, tol_mps=0.01)
+    assert schedule.upper_mps - schedule.lower_mps <= 0.01 + 1e-9
+    assert schedule.lower_mps <= ref["optimum_dv_mps"] + 1e-6
+    assert schedule.upper_mps <= ref["optimum_dv_mps"] + REFERENCE_TOL_MPS
+    assert schedule.upper_mps >= ref["lower_bound_mps"] - 1e-6
+    assert schedule.end_day <= data["tmax_days"] + 1e-9
+
+
+@pytest.mark.slow
+@pytest.mark.requires_shared_data("reference_cases/optima.json")
+@pytest.mark.parametrize(("case", "rule"), RUNS)
+def test_certified_answer_is_the_reference_optimum(case, rule):
+    data, catalog = load(case)
+    ref = data[rule]
+    mission = Mission(n=data["n"], tmax_days=data["tmax_days"], drift_inclination=rule)
+    solution = solve(catalog, mission, solver=SolverOptions(method="certified", gap=1e-3))
+    optimum = ref["optimum_dv_mps"]
+    assert solution.status == RunStatus.OPTIMAL
+    assert solution.certified
+    assert solution.total_dv_mps <= optimum * 1.001 + REFERENCE_TOL_MPS
+    assert solution.lower_bound_mps <= optimum + 1e-6
+    # the reference's own lower bound is certified too: the answer cannot beat it
+    assert solution.total_dv_mps >= ref["lower_bound_mps"] - 1e-6
+    assert solution.total_duration_days <= data["tmax_days"] + 1e-6
