@@ -92,6 +92,7 @@ class IterationRecord:
     alpha_km: float | None  # widest radius interval of the chosen copies; None without a path
     status: str
     note: str = ""
+    rejected: str = ""  # why the driver rejected this step ("" if it was not)
 
     def to_dict(self) -> dict:
         out = asdict(self)
@@ -173,6 +174,40 @@ class Solution:
             f"path      {' -> '.join(self.path)}",
             f"total dV  {self.total_dv_mps:.1f} m/s",
             f"duration  {self.total_duration_days:.2f} days (limit {self.mission.tmax_days:g})",
-            f"status    {self.status} after {len(self.iterations)} iterations ({self.backend})",
+            f"status    {self.status}: {self.plan_origin()} ({self.backend})",
         ]
+        if self.operations_dv_mps:
+            lines.append(
+                f"          transfers {self.transfers_dv_mps:.1f} m/s + operations "
+                f"{self.operations_dv_mps:.1f} m/s (deorbit by {self.operations.get('scenario')})"
+            )
         return "\n".join(lines)
+
+    # -- what the run folder and the summary share (issue 14) ------------------------
+    @property
+    def operations_dv_mps(self) -> float:
+        """ΔV of the operations at the debris (deorbiting), included in ``total_dv_mps``."""
+        return float(self.operations.get("total_mps", 0.0) or 0.0)
+
+    @property
+    def transfers_dv_mps(self) -> float:
+        """ΔV of the transfers alone: ``total_dv_mps`` less the operations [m/s]."""
+        return self.total_dv_mps - self.operations_dv_mps
+
+    def plan_origin(self) -> str:
+        """Where the returned plan's path came from, in words, and the MILP iterations run.
+
+        A path held before the first MILP (the seeding) is said to be so, not to be the
+        MILP iterations' result; rejected steps are counted.
+        """
+        count = len(self.iterations)
+        rejected = sum(1 for record in self.iterations if record.rejected)
+        tail = f"{count} MILP iteration{'' if count == 1 else 's'}"
+        tail += f", {rejected} rejected" if rejected else ""
+        shown = "->".join(self.path)
+        if any(note.startswith(f"held before the first MILP: {shown} ") for note in self.notes):
+            return f"path from the seeding, held before the first MILP; {tail}"
+        for record in self.iterations:
+            if tuple(record.path) == tuple(self.path) and not record.rejected:
+                return f"path from MILP iteration {record.iteration}; {tail}"
+        return tail
