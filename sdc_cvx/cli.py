@@ -8,6 +8,7 @@ mission, 4 solver failure.
 from __future__ import annotations
 
 import importlib.metadata
+import importlib.util
 import sys
 from functools import partial
 from pathlib import Path
@@ -75,10 +76,23 @@ def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
 
 def read_catalog(scenario: Scenario) -> Catalog:
     """The scenario's catalog, validated; exit 2 with its problems if invalid."""
-    try:
-        return scenario.load_catalog()
-    except (CatalogError, ScenarioError) as err:
-        fail(str(err))
+    import warnings
+
+    from .errors import CatalogWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", CatalogWarning)
+        try:
+            catalog = scenario.load_catalog()
+        except (CatalogError, ScenarioError) as err:
+            fail(str(err))
+    for warning in caught:
+        if issubclass(warning.category, CatalogWarning):
+            click.echo(f"warning: {warning.message}", err=True)
+        else:
+            warnings.showwarning(warning.message, warning.category, warning.filename,
+                                 warning.lineno)  # fmt: skip
+    return catalog
 
 
 def check_backend(solver: SolverOptions) -> None:
@@ -115,7 +129,8 @@ def catalog_options(command):
         "--format",
         "catalog_format",
         default=None,
-        help="Catalog format: csv, tle, omm or gtoc9 [from the extension].",
+        help="Catalog format: csv, tle, omm or gtoc9 [from the content; the extension "
+        "when the content cannot tell].",
     )(command)
     return click.option(
         "--catalog",
@@ -201,8 +216,12 @@ def edges(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_ma
 
     SCENARIO.toml (optional) gives the catalog and mission; the options override it.
     """
+    import math
+
     from .network.edges import preoptimize
 
+    if not (math.isfinite(departure_day) and departure_day >= 0):
+        fail(f"--departure-day: expected a finite number of days >= 0, got {departure_day:g}")
     scenario = build_scenario(scenario_file, catalog_path=catalog_path,
                               catalog_format=catalog_format, catalog_start=start,
                               preopt_days=preopt_days, dv_max_mps=dv_max_mps)  # fmt: skip
@@ -471,7 +490,7 @@ def catalog_table(catalog: Catalog) -> str:
     "--format",
     "catalog_format",
     default=None,
-    help="csv, tle, omm or gtoc9 [from the extension].",
+    help="csv, tle, omm or gtoc9 [from the content; the extension when it cannot tell].",
 )
 @start_option
 @selection_options
@@ -531,7 +550,8 @@ def solvers():
     default=None,
     help="Output folder [a new sdc_sweep_* folder here].",
 )
-@click.option("--workers", type=int, default=None, help="Local processes [one per core].")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Local processes [one per core].")  # fmt: skip
 @click.option(
     "--scheduler",
     default=None,
@@ -552,10 +572,22 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     from .study.runner import run_study
     from .study.study import load_study
 
+    if resume and out_dir is None:
+        fail("--resume needs --out, the folder of the sweep to finish")
+    if scheduler is not None and importlib.util.find_spec("distributed") is None:
+        fail("--scheduler needs dask.distributed, which is not installed here: "
+             "pip install 'sdc_cvx[dask]'")  # fmt: skip
     try:
         study = load_study(study_file)
     except (ScenarioError, SweepError, OSError) as err:
         fail(str(err))
+    if out_dir is not None:
+        out = Path(out_dir)
+        if out.exists() and not out.is_dir():
+            fail(f"--out: {out} is a file, not a folder")
+        if (out / "results.csv").exists() and not resume:
+            fail(f"--out: {out} already holds results.csv: add --resume to finish that "
+                 "sweep, or choose a new folder")  # fmt: skip
     folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
     show = sys.stderr.isatty() if progress is None else progress
     try:

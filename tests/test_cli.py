@@ -47,7 +47,7 @@ def test_run_shows_progress_per_iteration_when_forced(tmp_path):
 def test_run_shows_no_progress_when_stderr_is_not_a_terminal(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3"])
     assert result.exit_code == 0, result.output
-    assert "it  0" not in result.output and "choosing 3" in result.stderr
+    assert "it  0" not in result.output and "Choosing 3 of 11 debris" in result.stderr
     assert "path      " in result.stdout
 
 
