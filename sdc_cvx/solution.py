@@ -183,6 +183,27 @@ class Solution:
             )
         return "\n".join(lines)
 
+    # -- for Python users: the run folder and the figures (issue 14) ------------------
+    def save(self, folder, *, formats=("png",), scenario_toml: str | None = None) -> list:
+        """Write the run folder ``folder`` as ``python -m sdc_cvx run --out folder`` does.
+
+        ``solution.json``, ``legs.csv``, ``iterations.csv``, ``edges.csv``, the four
+        figures in each of ``formats`` and, if given, ``scenario.toml``; the whole folder
+        is written aside and swapped in at once (an earlier run folder there is replaced,
+        any other non-empty folder refused: see :mod:`sdc_cvx.report.run_folder`).
+        Returns the paths written.
+        """
+        from .report.run_folder import save_solution  # report imports this module: lazily
+
+        return save_solution(self, folder, formats=tuple(formats), scenario_toml=scenario_toml)
+
+    def plot(self) -> dict:
+        """The run folder's four figures (matplotlib ``Figure`` by name: ``orbits``,
+        ``raan``, ``cost``, ``iterations``), drawn and not saved."""
+        from .report.plots import figures  # matplotlib only when asked
+
+        return figures(self)
+
     # -- what the run folder and the summary share (issue 14) ------------------------
     @property
     def operations_dv_mps(self) -> float:

@@ -688,6 +688,22 @@ def _mark_clipped(ax, points, limits, unit: str, gid: str) -> None:
                     va=va, ha="left")  # fmt: skip
 
 
+def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Figure]:
+    """The four figures of a run folder, by name (:data:`FIGURE_NAMES`), not saved.
+
+    ``catalog`` defaults to ``solution.catalog`` (set by :func:`sdc_cvx.solve`); without
+    either, only ``cost`` and ``iterations`` are drawn.  :meth:`Solution.plot` calls this.
+    """
+    catalog = solution.catalog if catalog is None else catalog
+    drawn = {}
+    if catalog is not None:
+        drawn["orbits"] = plot_orbits(solution, catalog)
+        drawn["raan"] = plot_raan(solution, catalog)
+    drawn["cost"] = plot_cost(solution)
+    drawn["iterations"] = plot_iterations(solution)
+    return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
+
+
 # ---------------------------------------------------------------------- saving
 def save_figures(
     solution: Solution,

@@ -292,3 +292,26 @@ def _swap_in(stage: Path, folder: Path) -> None:
     os.rename(folder, old / "old")  # elsewhere: two renames, a moment without the folder
     os.rename(stage, folder)
     shutil.rmtree(old, ignore_errors=True)
+
+
+def save_solution(
+    solution: Solution,
+    folder: Path | str,
+    *,
+    formats: tuple[str, ...] = ("png",),
+    scenario_toml: str | None = None,
+) -> list[Path]:
+    """The run folder of ``solution``, as ``python -m sdc_cvx run --out`` writes it.
+
+    The edge table is that of the command line (the pre-optimisation of the solution's
+    catalog and mission); ``scenario.toml`` only when ``scenario_toml`` is given (a
+    :class:`~sdc_cvx.study.scenario.Scenario`'s ``to_toml()``).  :meth:`Solution.save`
+    calls this; the folder policy is :func:`write_run`'s.
+    """
+    from ..network.edges import preoptimize
+
+    edges = None
+    if solution.catalog is not None:
+        mission = solution.mission
+        edges = preoptimize(solution.catalog, mission, departure_day=mission.deorbit_days)
+    return write_run(folder, solution, edges, scenario_toml=scenario_toml, formats=formats)
