@@ -805,7 +805,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     settings : SequentialSettings, optional
         Trust intervals and convergence settings.
     progress : callable, optional
-        Called with each :class:`IterationRecord` as soon as it is known.
+        Called with each :class:`IterationRecord` as soon as it is known, and again
+        (its ``rejected`` set to why) when the driver rejects that step.
 
     Returns
     -------
