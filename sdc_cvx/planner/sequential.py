@@ -636,7 +636,11 @@ class _Driver:
 
     def mark_rejected(self, reason: str):
         """Mark the last iteration's step rejected (and tell ``progress`` again)."""
-        record = replace(self.log.history[-1], rejected=reason)
+        record, tmax = self.log.history[-1], self.mission.tmax_days
+        end = record.duration_true_days
+        if "after T_max" not in reason and end is not None and end > tmax + 1e-6:
+            reason += f"; its true plan also ends on day {end:.1f}, after T_max = {tmax:g}"
+        record = replace(record, rejected=reason)
         self.log.history[-1] = record
         self.progress(record)
 

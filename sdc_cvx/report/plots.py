@@ -683,9 +683,12 @@ def _mark_clipped(ax, points, limits, unit: str, gid: str) -> None:
         edge, marker, va = (high, "^", "top") if y > high else (low, "v", "bottom")
         ax.plot([x], [edge], linestyle="none", marker=marker, markersize=8, clip_on=False,
                 color=_LIMIT_COLOR, gid=gid, zorder=6)  # fmt: skip
-        ax.annotate(f"{y:,.0f} {unit}", xy=(x, edge), xytext=(4, -4 if va == "top" else 4),
+        # vertical, into the axes: neighbouring outliers' values do not run into each other
+        ax.annotate(f"{y:,.0f} {unit}", xy=(x, edge), xytext=(0, -8 if va == "top" else 8),
                     textcoords="offset points", fontsize=_NOTE_SIZE, color=_LIMIT_COLOR,
-                    va=va, ha="left")  # fmt: skip
+                    va=va, ha="center", rotation=90,
+                    bbox={"boxstyle": "square,pad=0.1", "facecolor": "white", "alpha": 0.7,
+                          "linewidth": 0})  # fmt: skip
 
 
 def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Figure]:
