@@ -311,7 +311,7 @@ class RunProgress:
         return "\n".join(self.lines) + "\n"
 
     def _beat(self) -> None:
-        while not self._stop.wait(1.0):
+        while not self._stop.wait(min(1.0, self.heartbeat_s)):
             now = self._time()
             if now - self._last >= self.heartbeat_s:
                 self.say(f"  ... {now - self.started:5.0f} s: {self.phase}")

@@ -384,9 +384,9 @@ def test_progress_heartbeat_names_the_phase_while_silent(capsys):
     """A long silent phase (seeding, a MILP) still gets a line every few seconds."""
     from sdc_cvx.cli import RunProgress
 
-    with RunProgress(show=True, heartbeat_s=0.2) as steps:
+    with RunProgress(show=True, heartbeat_s=0.1) as steps:
         steps.set_phase("seeding: re-optimising cheap paths")
-        time.sleep(2.5)
+        time.sleep(0.6)
     beats = [line for line in capsys.readouterr().err.splitlines() if " s: seeding" in line]
     assert len(beats) >= 2
     assert any(" s: seeding" in line for line in steps.log_text().splitlines())
