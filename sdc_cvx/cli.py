@@ -8,6 +8,7 @@ mission, 4 solver failure.
 from __future__ import annotations
 
 import importlib.metadata
+import importlib.util
 import sys
 from functools import partial
 from pathlib import Path
@@ -75,10 +76,23 @@ def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
 
 def read_catalog(scenario: Scenario) -> Catalog:
     """The scenario's catalog, validated; exit 2 with its problems if invalid."""
-    try:
-        return scenario.load_catalog()
-    except (CatalogError, ScenarioError) as err:
-        fail(str(err))
+    import warnings
+
+    from .errors import CatalogWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", CatalogWarning)
+        try:
+            catalog = scenario.load_catalog()
+        except (CatalogError, ScenarioError) as err:
+            fail(str(err))
+    for warning in caught:
+        if issubclass(warning.category, CatalogWarning):
+            click.echo(f"warning: {warning.message}", err=True)
+        else:
+            warnings.showwarning(warning.message, warning.category, warning.filename,
+                                 warning.lineno)  # fmt: skip
+    return catalog
 
 
 def check_backend(solver: SolverOptions) -> None:
@@ -115,7 +129,8 @@ def catalog_options(command):
         "--format",
         "catalog_format",
         default=None,
-        help="Catalog format: csv, tle, omm or gtoc9 [from the extension].",
+        help="Catalog format: csv, tle, omm or gtoc9 [from the content; the extension "
+        "when the content cannot tell].",
     )(command)
     return click.option(
         "--catalog",
@@ -201,8 +216,12 @@ def edges(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_ma
 
     SCENARIO.toml (optional) gives the catalog and mission; the options override it.
     """
+    import math
+
     from .network.edges import preoptimize
 
+    if not (math.isfinite(departure_day) and departure_day >= 0):
+        fail(f"--departure-day: expected a finite number of days >= 0, got {departure_day:g}")
     scenario = build_scenario(scenario_file, catalog_path=catalog_path,
                               catalog_format=catalog_format, catalog_start=start,
                               preopt_days=preopt_days, dv_max_mps=dv_max_mps)  # fmt: skip
@@ -214,23 +233,92 @@ def edges(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_ma
 
 
 # ---------------------------------------------------------------------- run
-def print_iteration(record):
-    """One progress line per iteration (to stderr)."""
-    if record.status == "bound":  # the certified search
+def iteration_line(record) -> str:
+    """The progress line of an iteration, or of its rejection (the driver tells it twice)."""
+    if record.status == "bound":  # a relaxation of the certified search
         plan = "-" if record.dv_true_mps is None else f"{record.dv_true_mps:.2f}"
-        click.echo(f"  it {record.iteration:2d}  relaxation {record.dv_linearized_mps:.2f}  "
-                   f"best plan {plan} m/s  {record.seconds:6.2f} s  ({record.note})",
-                   err=True)  # fmt: skip
-        return
+        return (f"  it {record.iteration:2d}  relaxation {record.dv_linearized_mps:.2f}  "
+                f"best plan {plan} m/s  {record.seconds:6.2f} s  ({record.note})")  # fmt: skip
+    if record.rejected:
+        return f"  it {record.iteration:2d}  step rejected: {record.rejected}"
     dv_lin = "-" if record.dv_linearized_mps is None else f"{record.dv_linearized_mps:8.1f}"
     dv_true = "-" if record.dv_true_mps is None else f"{record.dv_true_mps:8.1f}"
     days = "-" if record.duration_true_days is None else f"{record.duration_true_days:7.1f}"
-    click.echo(
+    return (
         f"  it {record.iteration:2d}  {'->'.join(record.path) or '(none)':<28} "
         f"dV lin {dv_lin}  true {dv_true} m/s  {days} d  nodes {record.nodes}  "
-        f"{record.seconds:6.2f} s  {record.note}",
-        err=True,
-    )
+        f"{record.seconds:6.2f} s  {record.note}"
+    ).rstrip()
+
+
+def print_iteration(record):
+    """One progress line per iteration (to stderr)."""
+    click.echo(iteration_line(record), err=True)
+
+
+class RunProgress:
+    """The progress of a run: to stderr when asked (a terminal), and always to ``run.log``.
+
+    Every phase is named: reading and seeding, each MILP iteration (and the rejection of a
+    step, with why), the re-optimisation and the writing.  While a phase is silent, a
+    heartbeat line says what is running and for how long, every ``heartbeat_s`` seconds.
+    """
+
+    def __init__(self, show: bool, heartbeat_s: float = 5.0):
+        import threading
+        import time
+
+        self.show, self.heartbeat_s, self._time = show, heartbeat_s, time.monotonic
+        self.lines: list[str] = []
+        self.started = self._last = self._time()
+        self.phase = "reading the catalog"
+        self.iterations = 0
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._beat, daemon=True)
+
+    def __enter__(self):
+        if self.show:
+            self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        if self._thread.is_alive():
+            self._thread.join()
+
+    def say(self, line: str, *, show: bool = True) -> None:
+        from datetime import UTC, datetime
+
+        with self._lock:
+            stamp = datetime.now(UTC).strftime("%H:%M:%S")
+            self.lines.append(f"{stamp} {line}")
+            self._last = self._time()
+            if self.show and show:
+                click.echo(line, err=True)
+
+    def set_phase(self, phase: str) -> None:
+        self.phase = phase
+        self.say(f"  ... {phase}")
+
+    def iteration(self, record) -> None:
+        """The solver's progress callback (:func:`sdc_cvx.planner.sequential.solve`)."""
+        self.say(iteration_line(record))
+        if not record.rejected:
+            self.iterations = record.iteration + 1
+            self.phase = (
+                f"after MILP iteration {record.iteration}: the next MILP, or the "
+                "re-optimisation of the path in the true model"
+            )
+
+    def log_text(self) -> str:
+        return "\n".join(self.lines) + "\n"
+
+    def _beat(self) -> None:
+        while not self._stop.wait(min(1.0, self.heartbeat_s)):
+            now = self._time()
+            if now - self._last >= self.heartbeat_s:
+                self.say(f"  ... {now - self.started:5.0f} s: {self.phase}")
 
 
 @main.command()
@@ -308,8 +396,12 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     """
     from .network.edges import preoptimize
     from .planner.api import solve
-    from .report.run_folder import new_run_folder, write_run
+    from .report.run_folder import new_run_folder, out_folder_problem, write_run
     from .solution import RunStatus
+
+    # a plan, but the run did not settle: say so (a new solved status needs no warning)
+    unsettled = {RunStatus.CONVERGED_UNCONFIRMED, RunStatus.ITERATION_LIMIT, RunStatus.TIME_LIMIT,
+                 RunStatus.FEASIBLE}  # fmt: skip
 
     scenario = build_scenario(
         scenario_file, catalog_path=catalog_path, catalog_format=catalog_format,
@@ -320,6 +412,10 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         fallback=tuple(fallback) or None,
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids),
     )  # fmt: skip
+    if out_dir is not None:  # before the solve: a bad --out must not cost a solve
+        problem = out_folder_problem(Path(out_dir))
+        if problem is not None:
+            fail(f"--out: {problem}")
     catalog = read_catalog(scenario)
     mission, solver = scenario.mission, scenario.solver
 
@@ -331,25 +427,32 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     try:
         mission.check_candidates(catalog.ids)
     except MissionError as err:
-        fail(f"mission.n: {err} of {catalog.source}")
+        where = f"{scenario.source}: " if scenario.source is not None else ""
+        problems = "; ".join(f"mission.{problem}" for problem in str(err).split("; "))
+        fail(f"{where}{problems} (catalog: {catalog.source})")
     check_backend(solver)
 
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
-    info(f"{catalog!r}: choosing {mission.n}, T_max {mission.tmax_days:g} days, {solver.backend}")
-    try:
-        solution = solve(
-            catalog, mission, solver=solver, progress=print_iteration if show_progress else None
-        )
-    except MissionInfeasible as err:
-        fail(f"infeasible mission: {err}", exit_code(err))
-    except SolverFailure as err:
-        fail(f"solver failure: {err}", exit_code(err))
-    edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+    header = run_header(catalog, mission, solver)
+    info(header)
+    with RunProgress(show_progress) as steps:
+        steps.say(header, show=False)
+        steps.set_phase("seeding: re-optimising cheap paths, then building the first MILP")
+        try:
+            solution = solve(catalog, mission, solver=solver, progress=steps.iteration)
+        except MissionInfeasible as err:
+            fail(f"infeasible mission: {err}", exit_code(err))
+        except SolverFailure as err:
+            fail(f"solver failure: {err}", exit_code(err))
+        steps.set_phase("writing the run folder")
+        steps.say(solution.summary(), show=False)
+        edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
     folder = Path(out_dir) if out_dir else None
     try:
         folder = folder or new_run_folder()
         write_run(folder, solution, edge_table, scenario_toml=scenario.to_toml(),
-                  catalog=catalog, formats=("png", "svg") if svg else ("png",))  # fmt: skip
+                  catalog=catalog, formats=("png", "svg") if svg else ("png",),
+                  log=steps.log_text())  # fmt: skip
     except OSError as err:
         fail(f"cannot write the run folder {folder or '.'}: {err.strerror or err}")
     start = None  # the mission start date the RAANs refer to (Catalog.start)
@@ -366,8 +469,17 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         if start:
             click.echo(start)
         click.echo(f"results   {folder}/solution.json")
-    if solution.status not in (RunStatus.OPTIMAL, RunStatus.CONVERGED):
+    if not solution.status.is_solved or solution.status in unsettled:
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
+
+
+def run_header(catalog: Catalog, mission, solver) -> str:
+    """The first line of ``run``: what is planned, in a sentence."""
+    start = "" if catalog.start is None else f", RAANs at {catalog.start.isoformat()}"
+    return (
+        f"Choosing {mission.n} of {len(catalog)} debris from {catalog.source}{start}; "
+        f"T_max {mission.tmax_days:g} days; MILP backend {solver.backend}."
+    )
 
 
 # ---------------------------------------------------------------------- catalog
@@ -398,7 +510,7 @@ def catalog_table(catalog: Catalog) -> str:
     "--format",
     "catalog_format",
     default=None,
-    help="csv, tle, omm or gtoc9 [from the extension].",
+    help="csv, tle, omm or gtoc9 [from the content; the extension when it cannot tell].",
 )
 @start_option
 @selection_options
@@ -458,7 +570,8 @@ def solvers():
     default=None,
     help="Output folder [a new sdc_sweep_* folder here].",
 )
-@click.option("--workers", type=int, default=None, help="Local processes [one per core].")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Local processes [one per core].")  # fmt: skip
 @click.option(
     "--scheduler",
     default=None,
@@ -479,10 +592,22 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     from .study.runner import run_study
     from .study.study import load_study
 
+    if resume and out_dir is None:
+        fail("--resume needs --out, the folder of the sweep to finish")
+    if scheduler is not None and importlib.util.find_spec("distributed") is None:
+        fail("--scheduler needs dask.distributed, which is not installed here: "
+             "pip install 'sdc_cvx[dask]'")  # fmt: skip
     try:
         study = load_study(study_file)
     except (ScenarioError, SweepError, OSError) as err:
         fail(str(err))
+    if out_dir is not None:
+        out = Path(out_dir)
+        if out.exists() and not out.is_dir():
+            fail(f"--out: {out} is a file, not a folder")
+        if (out / "results.csv").exists() and not resume:
+            fail(f"--out: {out} already holds results.csv: add --resume to finish that "
+                 "sweep, or choose a new folder")  # fmt: skip
     folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
     show = sys.stderr.isatty() if progress is None else progress
     try:

@@ -82,6 +82,10 @@ class ScenarioError(InputError):
 
 
 # --------------------------------------------------------------------- planning
+class CatalogWarning(UserWarning):
+    """A catalog was read, but something in it is likely a mistake (an unknown column)."""
+
+
 class PlanningError(SdcError, RuntimeError):
     """Valid inputs, but no plan: the mission is infeasible or the solver failed."""
 

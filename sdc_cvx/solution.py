@@ -96,6 +96,7 @@ class IterationRecord:
     alpha_km: float | None  # widest radius interval of the chosen copies; None without a path
     status: str
     note: str = ""
+    rejected: str = ""  # why the driver rejected this step ("" if it was not)
 
     def to_dict(self) -> dict:
         out = asdict(self)
@@ -162,14 +163,14 @@ class Solution:
         return gap / self.total_dv_mps if self.total_dv_mps > 0 else 0.0
 
     def quality(self) -> str:
-        """What is known of the answer, in words: ``optimal (gap 0.01 m/s)`` and the like."""
+        """What is known of the answer, in words: ``optimal (gap 0.01 m/s, ...)`` and the like."""
         if self.lower_bound_mps is None:
-            return f"{self.status} (paper's method: no bound on the distance to the optimum)"
+            return "no proven bound (the paper's method is a local search)"
         gap = f"gap {self.gap_mps:.2f} m/s, {100 * self.gap_rel:.2f} %"
         if self.status == RunStatus.OPTIMAL:
             return f"optimal ({gap}; lower bound {self.lower_bound_mps:.2f} m/s)"
         why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
-        return f"{self.status}: {gap} ({why})"
+        return f"{self.status}, {gap} ({why}; lower bound {self.lower_bound_mps:.2f} m/s)"
 
     def legs_frame(self) -> pd.DataFrame:
         """Legs as a table (km, deg, days, m/s)."""
@@ -219,9 +220,68 @@ class Solution:
         """A few lines for people: path, ΔV, duration, iterations."""
         lines = [
             f"path      {' -> '.join(self.path)}",
-            f"total dV  {self.total_dv_mps:.1f} m/s",
+            f"total dV  {self.total_dv_mps:.2f} m/s, {self.quality()}",
             f"duration  {self.total_duration_days:.2f} days (limit {self.mission.tmax_days:g})",
-            f"status    {self.quality()}",
-            f"search    {self.method}, {len(self.iterations)} iterations ({self.backend})",
+            f"status    {self.status}: {self.plan_origin()}",
         ]
+        if self.operations_dv_mps:
+            lines.append(
+                f"          transfers {self.transfers_dv_mps:.1f} m/s + operations "
+                f"{self.operations_dv_mps:.1f} m/s (deorbit by {self.operations.get('scenario')})"
+            )
         return "\n".join(lines)
+
+    # -- for Python users: the run folder and the figures (issue 14) ------------------
+    def save(self, folder, *, formats=("png",), scenario_toml: str | None = None) -> list:
+        """Write the run folder ``folder`` as ``python -m sdc_cvx run --out folder`` does.
+
+        ``solution.json``, ``legs.csv``, ``iterations.csv``, ``edges.csv``, the four
+        figures in each of ``formats`` and, if given, ``scenario.toml``; the whole folder
+        is written aside and swapped in at once (an earlier run folder there is replaced,
+        any other non-empty folder refused: see :mod:`sdc_cvx.report.run_folder`).
+        Returns the paths written.
+        """
+        from .report.run_folder import save_solution  # report imports this module: lazily
+
+        return save_solution(self, folder, formats=tuple(formats), scenario_toml=scenario_toml)
+
+    def plot(self) -> dict:
+        """The run folder's four figures (matplotlib ``Figure`` by name: ``orbits``,
+        ``raan``, ``cost``, ``iterations``), drawn and not saved."""
+        from .report.plots import figures  # matplotlib only when asked
+
+        return figures(self)
+
+    # -- what the run folder and the summary share (issue 14) ------------------------
+    @property
+    def operations_dv_mps(self) -> float:
+        """ΔV of the operations at the debris (deorbiting), included in ``total_dv_mps``."""
+        return float(self.operations.get("total_mps", 0.0) or 0.0)
+
+    @property
+    def transfers_dv_mps(self) -> float:
+        """ΔV of the transfers alone: ``total_dv_mps`` less the operations [m/s]."""
+        return self.total_dv_mps - self.operations_dv_mps
+
+    def plan_origin(self) -> str:
+        """Where the returned plan's path came from, in words, and the MILP iterations run.
+
+        For the certified search: the relaxations solved (its answer is proven, not found
+        by one step).
+
+        A path held before the first MILP (the seeding) is said to be so, not to be the
+        MILP iterations' result; rejected steps are counted.
+        """
+        count = len(self.iterations)
+        if self.method == "certified":
+            return f"certified search, {count} relaxation MILPs ({self.backend})"
+        rejected = sum(1 for record in self.iterations if record.rejected)
+        tail = f"{count} MILP iteration{'' if count == 1 else 's'}"
+        tail += f", {rejected} rejected" if rejected else ""
+        shown = "->".join(self.path)
+        if any(note.startswith(f"held before the first MILP: {shown} ") for note in self.notes):
+            return f"path from the seeding, held before the first MILP; {tail}"
+        for record in self.iterations:
+            if tuple(record.path) == tuple(self.path) and not record.rejected:
+                return f"path from MILP iteration {record.iteration}; {tail}"
+        return tail

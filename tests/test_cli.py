@@ -2,6 +2,7 @@
 
 import importlib.metadata
 import json
+import time
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -47,7 +48,7 @@ def test_run_shows_progress_per_iteration_when_forced(tmp_path):
 def test_run_shows_no_progress_when_stderr_is_not_a_terminal(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3"])
     assert result.exit_code == 0, result.output
-    assert "it  0" not in result.output and "choosing 3" in result.stderr
+    assert "it  0" not in result.output and "Choosing 3 of 11 debris" in result.stderr
     assert "path      " in result.stdout
 
 
@@ -377,3 +378,29 @@ def test_catalog_start_moves_the_raans_of_the_gtoc9_file():
     assert abs(raan - latest) > 1.0
     row = result.stdout.splitlines()[1].split()
     assert row[0] == "0" and row[3] == f"{raan:.4f}"
+
+
+def test_progress_heartbeat_names_the_phase_while_silent(capsys):
+    """A long silent phase (seeding, a MILP) still gets a line every few seconds."""
+    from sdc_cvx.cli import RunProgress
+
+    with RunProgress(show=True, heartbeat_s=0.1) as steps:
+        steps.set_phase("seeding: re-optimising cheap paths")
+        time.sleep(0.6)
+    beats = [line for line in capsys.readouterr().err.splitlines() if " s: seeding" in line]
+    assert len(beats) >= 2
+    assert any(" s: seeding" in line for line in steps.log_text().splitlines())
+
+
+@pytest.mark.slow
+def test_run_progress_and_run_log_say_which_steps_were_rejected(tmp_path):
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["run", str(EXAMPLES / "options.toml"), "--out", str(out),
+                                       "--progress"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    rejected = [line for line in result.stderr.splitlines() if "step rejected:" in line]
+    assert rejected and all("held plan worse" in line for line in rejected)
+    log = (out / "run.log").read_text()
+    assert log.count("step rejected:") == len(rejected)
+    assert "Choosing 5 of 11 debris from paper Table 5" in log and "total dV  2985.8" in log
+    assert "status    converged: path from the seeding" in result.stdout

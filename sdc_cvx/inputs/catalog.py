@@ -28,6 +28,7 @@ import io
 import math
 import numbers
 import os
+import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from datetime import datetime
@@ -37,7 +38,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..errors import MAX_REPORTED, CatalogError
+from ..errors import MAX_REPORTED, CatalogError, CatalogWarning
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
 
 __all__ = [
@@ -183,6 +184,7 @@ class Catalog:
         ``broken`` maps the positions of rows that cannot be read to their problem.
         """
         problems: list[str] = []
+        _warn_unknown_columns(list(raw.columns), source)
         columns = _check_rows(raw, source, where, problems, broken or {})
         start_ts = _parse_start(start, source, problems)
         if problems:
@@ -385,6 +387,8 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
         errors = {"id": error}
         for name, check in _CHECKS.items():
             values.numbers[name][pos], errors[name] = _to_float(raw[name].iat[pos], check)
+        if not (errors["a_km"] or errors["e"]):
+            errors["a_km"] = _check_domain(values.numbers["a_km"][pos], values.numbers["e"][pos])
         if has_epoch:
             epochs[pos], errors["epoch"] = _to_epoch(raw["epoch"].iat[pos])
         problems += [f"{prefix}, field '{f}': {msg}" for f, msg in errors.items() if msg]
@@ -413,6 +417,52 @@ def _check_a(value: float) -> str | None:
     return (
         f"expected a number > {R_EARTH_KM}, got {{got}} ({side} the Earth's radius {R_EARTH_KM} km)"
     )
+
+
+MIN_PERIGEE_KM = 150.0
+"""Lowest perigee altitude of a catalog orbit [km]: below, an orbit decays within days."""
+MAX_A_KM = 100_000.0
+"""Largest semi-major axis of a catalog orbit [km] (GEO is 42,164 km; the Moon 384,400)."""
+KNOWN_COLUMNS = (
+    "id", "a_km", "e", "inc_deg", "raan_deg", "name", "epoch", "raan_rate_deg_per_day",
+    "altitude_km", "raan_epoch_deg", "argp_deg", "mean_anomaly_deg",
+    "mean_motion_rev_per_day", "intl_designator",
+)  # fmt: skip
+"""Columns a catalog reads or its readers write; any other draws a :class:`CatalogWarning`."""
+
+
+def _check_domain(a_km: float, e: float) -> str | None:
+    """Whether an orbit is one the package can plan with (README, "Physical domain")."""
+    if a_km > MAX_A_KM:
+        return (
+            f"expected a semi-major axis of at most {MAX_A_KM:,.0f} km (an Earth orbit), "
+            f"got {a_km:g}"
+        )
+    perigee = a_km * (1.0 - e) - R_EARTH_KM
+    if perigee < MIN_PERIGEE_KM:
+        return (
+            f"expected a perigee altitude a_km * (1 - e) - {R_EARTH_KM} of at least "
+            f"{MIN_PERIGEE_KM:g} km (lower orbits decay within days), got a_km = {a_km:g} "
+            f"and e = {e:g}: perigee at {perigee:.1f} km"
+        )
+    return None
+
+
+def _warn_unknown_columns(columns: list, source: str) -> None:
+    """One :class:`CatalogWarning` per column the catalog does not read (a typo, likely)."""
+    for column in columns:
+        if str(column) in KNOWN_COLUMNS:
+            continue
+        hint = ""
+        if "epoch" in str(column).lower():
+            hint = f"; the epoch column is named 'epoch' ({_EPOCH_EXPECTED})"
+        warnings.warn(
+            f"{source}, header: unknown column {str(column)!r} is not used (kept as text); "
+            f"the columns read are id, a_km, e, inc_deg, raan_deg and optional name, "
+            f"epoch{hint}",
+            CatalogWarning,
+            stacklevel=4,
+        )
 
 
 def _check_e(value: float) -> str | None:

@@ -25,6 +25,11 @@ from ..physics.orbits import J2, R_EARTH
 DRIFT_INCLINATION_RULES = ("table3", "free")
 
 
+MAX_TMAX_DAYS = 3652.5
+"""The longest mission planned [days]: 10 years (beyond, drag and the debris' decay,
+which the model leaves out, change the orbits more than the drift does)."""
+
+
 @dataclass(frozen=True)
 class Mission:
     """Parameters of a debris collecting mission (paper Part II-B, III-I, IV-B, V).
@@ -116,6 +121,11 @@ class Mission:
         for name in ("deorbit_days", "operations_dv_mps", "min_transfer_days"):
             if name not in wrong_type and not getattr(self, name) >= 0:
                 yield f"{name} must be >= 0, got {getattr(self, name)!r}"
+        if "tmax_days" not in wrong_type and self.tmax_days > MAX_TMAX_DAYS:
+            yield (
+                f"tmax_days must be at most {MAX_TMAX_DAYS:g} days (10 years: the model "
+                f"leaves out drag and the debris' own decay), got {self.tmax_days:g}"
+            )
         if wrong_type:
             return
         yield from self._option_problems()

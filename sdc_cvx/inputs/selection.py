@@ -9,7 +9,12 @@ not cover:
 - near-polar orbits (inclination within 0.5 deg of 90 deg): their J2 RAAN rate is
   about zero (Eq. 7, ``cos i ~ 0``), so the drift strategy cannot close a RAAN gap
   with them.  Prograde and retrograde orbits are both fine (the drift sides of
-  Table 3 are stated by precession rate).
+  Table 3 are stated by precession rate);
+- orbits above low Earth orbit (apogee altitude above :data:`LEO_MAX_APOGEE_KM`, 2,000
+  km): the J2 drift strategy is a LEO strategy (the RAAN rate falls as a^-3.5: a
+  drift at GEO would take centuries).  Together with the catalog's own checks (perigee
+  altitude at least 150 km, a at most 100,000 km: refused when read) this is the
+  physical domain of the model (README, "Physical domain").
 
 Every dropped debris is reported with its reasons, in words, in a table.
 """
@@ -25,11 +30,12 @@ import numpy as np
 import pandas as pd
 
 from ..physics.orbits import DEFAULT_MAX_ECCENTRICITY
-from .catalog import Catalog
+from .catalog import R_EARTH_KM, Catalog
 
 __all__ = [
     "CHECKS",
     "DEFAULT_MAX_ECCENTRICITY",
+    "LEO_MAX_APOGEE_KM",
     "POLAR_MARGIN_DEG",
     "select",
     "summary",
@@ -38,7 +44,11 @@ __all__ = [
 POLAR_MARGIN_DEG = 0.5
 """Orbits with ``|inclination - 90 deg|`` below this are dropped (RAAN rate ~ 0)."""
 
-CHECKS = ("ids", "names", "excluded", "altitude", "inclination", "eccentricity", "near-polar")
+LEO_MAX_APOGEE_KM = 2000.0
+"""Orbits with an apogee altitude above this [km] are dropped (outside low Earth orbit)."""
+
+CHECKS = ("ids", "names", "excluded", "altitude", "inclination", "eccentricity", "near-polar",
+          "above-leo")  # fmt: skip
 """Names of the checks, as in the ``checks`` column of the report."""
 
 
@@ -145,6 +155,11 @@ def select(
     drop(np.abs(inc - 90.0) < margin, "near-polar",
          lambda k: f"inclination {inc[k]:.2f} deg within {margin:g} deg of 90 (J2 RAAN rate "
                    f"{rate[k]:.4f} deg/day: drift transfers cannot close RAAN gaps)")  # fmt: skip
+
+    apogee = frame["a_km"].to_numpy(dtype=float) * (1.0 + ecc) - R_EARTH_KM
+    drop(apogee > LEO_MAX_APOGEE_KM, "above-leo",
+         lambda k: f"apogee altitude {apogee[k]:,.0f} km > {LEO_MAX_APOGEE_KM:,.0f} km (the J2 "
+                   "drift strategy is planned for low Earth orbits)")  # fmt: skip
 
     dropped = np.array([bool(found) for found in reasons], dtype=bool)
     kept = Catalog(

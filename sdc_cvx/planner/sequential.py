@@ -416,6 +416,7 @@ class _Driver:
             f"iteration {len(self.log.history) - 1}: the step made the held plan worse in the true "
             "model: rejected, intervals narrowed around the held plan"
         )
+        self.mark_rejected("made the held plan worse in the true model; back to the held plan")
 
     def id_path(self, path) -> tuple[str, ...]:
         return tuple(self.catalog.ids[k] for k in path)
@@ -628,6 +629,20 @@ class _Driver:
             f"iteration {len(self.log.history) - 1}: true plan ends on day "
             f"{evaluation.end_day:.1f}, after T_max: step rejected, intervals narrowed"
         )
+        self.mark_rejected(
+            f"true plan ends on day {evaluation.end_day:.1f}, after T_max = "
+            f"{self.mission.tmax_days:g}; intervals narrowed"
+        )
+
+    def mark_rejected(self, reason: str):
+        """Mark the last iteration's step rejected (and tell ``progress`` again)."""
+        record, tmax = self.log.history[-1], self.mission.tmax_days
+        end = record.duration_true_days
+        if "after T_max" not in reason and end is not None and end > tmax + 1e-6:
+            reason += f"; its true plan also ends on day {end:.1f}, after T_max = {tmax:g}"
+        record = replace(record, rejected=reason)
+        self.log.history[-1] = record
+        self.progress(record)
 
     def advance(self, path, legs, a_legs, evaluation: PlanEvaluation, changed: bool):
         """Move the references to the solution (phase 1 or 2, see :meth:`move_references`).
@@ -794,7 +809,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     settings : SequentialSettings, optional
         Trust intervals and convergence settings.
     progress : callable, optional
-        Called with each :class:`IterationRecord` as soon as it is known.
+        Called with each :class:`IterationRecord` as soon as it is known, and again
+        (its ``rejected`` set to why) when the driver rejects that step.
 
     Returns
     -------

@@ -249,9 +249,15 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
     ax.plot(
         days, alts, color=_VEHICLE_COLOR, linewidth=1.3, label="vehicle", gid="vehicle", zorder=3
     )
+    last_label = None  # x [days] of the previous leg's label
     for k, leg in enumerate(solution.legs):
         start, stop = leg.departure_day, leg.departure_day + leg.duration_days
         color = _leg_color(k)
+        # a leg too short to hold its label (e.g. 1e-9 d at a RAAN crossing) would put it
+        # on top of its neighbour's: such a label goes above the line instead of below
+        middle = 0.5 * (start + stop)
+        crowded = last_label is not None and abs(middle - last_label) < 0.08 * end
+        last_label = None if crowded else middle
         ax.axvspan(start, stop, color=color, alpha=0.08, linewidth=0, zorder=0)
         ax.plot(
             [start, stop],
@@ -264,11 +270,11 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
         )
         ax.annotate(
             f"{_leg_name(leg)}\n{leg.drift_alt_km:.0f} km, {leg.drift_inc_deg:.2f}\u00b0",
-            xy=(0.5 * (start + stop), leg.drift_alt_km),
-            xytext=(0, -5),
+            xy=(middle, leg.drift_alt_km),
+            xytext=(0, 5) if crowded else (0, -5),
             textcoords="offset points",
             ha="center",
-            va="top",
+            va="bottom" if crowded else "top",
             fontsize=_NOTE_SIZE,
             color=color,
             fontweight="bold",
@@ -444,18 +450,19 @@ def plot_cost(solution: Solution) -> Figure:
                 before,
                 -width / 2,
                 _BEFORE_COLOR,
-                f"before optimisation ({_path_name(_legs_path(before))}): {total:.1f} m/s",
+                f"before optimisation ({_path_name(_legs_path(before))}): {total:.1f} m/s"
+                + (" transfers" if solution.operations_dv_mps else ""),
             )
         )
     total = sum(leg.dv_mps for leg in after)
-    series.append(
-        (
-            after,
-            width / 2 if before else 0.0,
-            _AFTER_COLOR,
-            f"after optimisation ({_path_name(_legs_path(after))}): {total:.1f} m/s",
+    label = f"after optimisation ({_path_name(_legs_path(after))}): {total:.1f} m/s"
+    if solution.operations_dv_mps:  # the total ΔV is that of the summary and solution.json
+        label = (
+            f"after optimisation ({_path_name(_legs_path(after))}): {total:.1f} m/s transfers"
+            f" + {solution.operations_dv_mps:.1f} m/s operations = "
+            f"{solution.total_dv_mps:.1f} m/s"
         )
-    )
+    series.append((after, width / 2 if before else 0.0, _AFTER_COLOR, label))
     for legs, shift, color, label in series:
         bars = ax.bar(
             x[: len(legs)] + shift,
@@ -599,15 +606,47 @@ def plot_iterations(solution: Solution) -> Figure:
             bbox={"boxstyle": "round", "facecolor": "white", "alpha": 0.85, "edgecolor": "#bbbbbb"},
         )
 
-    durations = series("duration_true_days")[1] + [tmax]
-    d_low, d_high = min(durations), max(durations)
+    # rejected steps: a red cross on their true ΔV and duration
+    rejected = [r for r in records if r.rejected and r.dv_true_mps is not None]
+    if rejected:
+        handles += ax.plot(
+            [r.iteration for r in rejected], [r.dv_true_mps for r in rejected], linestyle="none",
+            marker="x", markersize=9, markeredgewidth=2, color=_LIMIT_COLOR,
+            label="step rejected", gid="rejected", zorder=5,
+        )  # fmt: skip
+        right.plot(
+            [r.iteration for r in rejected], [r.duration_true_days for r in rejected],
+            linestyle="none", marker="x", markersize=9, markeredgewidth=2, color=_LIMIT_COLOR,
+            gid="rejected-duration", zorder=5,
+        )  # fmt: skip
+
+    # an outlier (a rejected plan ending on day 85,000 of a 365-day mission) does not
+    # stretch the axis: it is drawn as a marker at the edge, with its value
+    durations = series("duration_true_days")
+    kept = [d for d in durations[1] if d <= OUTLIER_FACTOR * tmax] + [tmax]
+    d_low, d_high = min(kept), max(kept)
     d_span = max(d_high - d_low, 1.0)
-    right.set_ylim(d_low - 0.1 * d_span, d_high + 0.1 * d_span)
-    dvs = series("dv_linearized_mps")[1] + series("dv_true_mps")[1]
-    if dvs:
+    d_limits = (d_low - 0.1 * d_span, d_high + 0.1 * d_span)
+    right.set_ylim(*d_limits)
+    _mark_clipped(right, durations, d_limits, "d", "duration-clipped")
+    dv_series = [series("dv_linearized_mps"), series("dv_true_mps")]
+    accepted = [
+        v
+        for r in records
+        if not r.rejected
+        for v in (r.dv_linearized_mps, r.dv_true_mps)
+        if v is not None and np.isfinite(v)
+    ]
+    every = [v for _, values in dv_series for v in values]
+    if every:
+        reference = max(accepted or every)
+        dvs = [v for v in every if abs(v) <= OUTLIER_FACTOR * abs(reference)] or every
         v_low, v_high = min(dvs), max(dvs)
         v_span = max(v_high - v_low, 1.0)
-        ax.set_ylim(v_low - 0.15 * v_span, v_high + 0.15 * v_span)
+        v_limits = (v_low - 0.15 * v_span, v_high + 0.15 * v_span)
+        ax.set_ylim(*v_limits)
+        for name, points in zip(("dv-linearized", "dv-true"), dv_series, strict=True):
+            _mark_clipped(ax, points, v_limits, "m/s", f"{name}-clipped")
 
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("iteration", fontsize=_LABEL_SIZE)
@@ -627,6 +666,45 @@ def plot_iterations(solution: Solution) -> Figure:
         frameon=False,
     )
     return fig
+
+
+OUTLIER_FACTOR = 2.0
+"""Iterations figure: durations above this many T_max, and ΔVs above this many times the
+largest ΔV of an accepted step, are drawn at the axis edge with their value instead of
+stretching the axis."""
+
+
+def _mark_clipped(ax, points, limits, unit: str, gid: str) -> None:
+    """Points of ``points`` = (x, y) outside ``limits``: a marker at the edge, and the value."""
+    low, high = limits
+    for x, y in zip(*points, strict=True):
+        if low <= y <= high:
+            continue
+        edge, marker, va = (high, "^", "top") if y > high else (low, "v", "bottom")
+        ax.plot([x], [edge], linestyle="none", marker=marker, markersize=8, clip_on=False,
+                color=_LIMIT_COLOR, gid=gid, zorder=6)  # fmt: skip
+        # vertical, into the axes: neighbouring outliers' values do not run into each other
+        ax.annotate(f"{y:,.0f} {unit}", xy=(x, edge), xytext=(0, -8 if va == "top" else 8),
+                    textcoords="offset points", fontsize=_NOTE_SIZE, color=_LIMIT_COLOR,
+                    va=va, ha="center", rotation=90,
+                    bbox={"boxstyle": "square,pad=0.1", "facecolor": "white", "alpha": 0.7,
+                          "linewidth": 0})  # fmt: skip
+
+
+def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Figure]:
+    """The four figures of a run folder, by name (:data:`FIGURE_NAMES`), not saved.
+
+    ``catalog`` defaults to ``solution.catalog`` (set by :func:`sdc_cvx.solve`); without
+    either, only ``cost`` and ``iterations`` are drawn.  :meth:`Solution.plot` calls this.
+    """
+    catalog = solution.catalog if catalog is None else catalog
+    drawn = {}
+    if catalog is not None:
+        drawn["orbits"] = plot_orbits(solution, catalog)
+        drawn["raan"] = plot_raan(solution, catalog)
+    drawn["cost"] = plot_cost(solution)
+    drawn["iterations"] = plot_iterations(solution)
+    return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
 
 
 # ---------------------------------------------------------------------- saving
@@ -690,6 +768,6 @@ def save_figures(
         for fmt in formats:
             target = folder / f"{name}.{fmt}"
             save = partial(fig.savefig, format=fmt, dpi=dpi)
-            write_atomic(target, save, mode=0o644)  # images are meant to be shared
+            write_atomic(target, save)  # 0644 under a 022 umask: meant to be shared
             written.append(target)
     return written

@@ -1,21 +1,47 @@
-"""Writing a run's results to a folder, atomically (temp file then rename).
+"""Writing a run's results to a folder, atomically.
 
-:func:`write_atomic` is the one atomic writer: the run folder, the figures
-(:mod:`sdc_cvx.report.plots`) and the sweep folders all go through it.
+:func:`write_atomic` is the one atomic writer of a file (a temporary file, then
+rename): the run folder, the figures (:mod:`sdc_cvx.report.plots`) and the sweep folders
+all go through it.  Files are created with the permissions ``open`` would give them
+(0666 less the umask: 0644 under the usual 022), not ``mkstemp``'s 0600.
+
+:func:`write_run` writes a whole run folder aside (a hidden ``.NAME.*.partial`` folder
+next to it) and swaps it in at once, so ``--out`` never shows a mix of two runs: a reader
+(or a kill at any moment) finds the old folder whole or the new one whole.  The policy
+for an existing ``--out`` (:func:`out_folder_problem`): a new or empty folder is used;
+an earlier run folder (one holding ``solution.json``, ``run.log`` or ``legs.csv``) is
+replaced whole, stale files (an old ``.svg``) included; any other non-empty folder is
+refused, so a mistyped ``--out ~`` cannot replace a home folder.
 """
 
 from __future__ import annotations
 
+import ctypes
 import os
+import shutil
 import tempfile
 from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
 from typing import BinaryIO
 
+import pandas as pd
+
 from ..inputs.catalog import Catalog
 from ..network.edges import EdgeTable
 from ..solution import Solution
+
+RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
+"""A folder holding one of these is an earlier run folder, which ``write_run`` replaces."""
+CSV_FLOAT_FORMAT = "%.10g"
+"""Floats in the CSV files: 10 significant digits (no ``98.30000000000001``)."""
+
+
+def file_mode(mode: int = 0o666) -> int:
+    """``mode`` less the process umask: the permissions ``open`` would give a new file."""
+    umask = os.umask(0)
+    os.umask(umask)
+    return mode & ~umask
 
 
 def write_atomic(
@@ -26,7 +52,8 @@ def write_atomic(
     The one atomic writer of sdc_cvx (a temporary file in the same folder, then
     ``os.replace``).  ``content`` is text (written as UTF-8) or a function that writes
     the bytes to the binary stream it is given (a figure's ``savefig``).  ``mode``: the
-    permissions of the file (the temporary file is created 0600), e.g. 0o644 for images.
+    permissions of the file; default those of a new file under the umask (0644 under
+    022), not the 0600 of the temporary file.
     """
     path = Path(path)
     handle, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
@@ -37,8 +64,7 @@ def write_atomic(
         else:
             with os.fdopen(handle, "w", encoding="utf-8") as stream:
                 stream.write(content)
-        if mode is not None:
-            os.chmod(temp, mode)
+        os.chmod(temp, file_mode() if mode is None else mode)
         os.replace(temp, path)
     except BaseException:
         Path(temp).unlink(missing_ok=True)
@@ -58,6 +84,82 @@ def new_run_folder(parent: Path | str = ".", prefix: str = "sdc_run_") -> Path:
     raise FileExistsError(f"cannot create a new run folder under {parent}")
 
 
+def out_folder_problem(folder: Path | str) -> str | None:
+    """Why ``folder`` cannot take a run folder, or None (checked before any solve).
+
+    Refused: a path inside a file, a file, a non-empty folder that is not an earlier
+    run folder (see the module docstring), and a place the user cannot write to.
+    """
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        return f"{folder} is a file, not a folder"
+    ancestor = folder if folder.exists() else folder.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        return f"{folder} is inside {ancestor}, which is a file, not a folder"
+    if folder.is_dir() and any(folder.iterdir()):
+        if not any((folder / name).exists() for name in RUN_FOLDER_MARKERS):
+            return (
+                f"{folder} is not empty and is not an earlier run folder (no "
+                f"{', '.join(RUN_FOLDER_MARKERS)}); choose a new or empty folder (an earlier "
+                "run folder is replaced whole)"
+            )
+        if not os.access(folder.parent, os.W_OK | os.X_OK):
+            return f"cannot replace {folder}: {folder.parent} is not writable"
+    parent = folder.parent if folder.exists() else ancestor
+    if not os.access(parent, os.W_OK | os.X_OK):
+        return f"cannot create {folder}: {parent} is not writable"
+    return None
+
+
+def legs_table(solution: Solution) -> pd.DataFrame:
+    """``legs.csv``: the legs, the operations each leg brings, and the running total.
+
+    ``operations_dv_mps`` is the ΔV of the operations at the leg's arrival debris (the
+    first leg also carries those at the first debris when the mission starts there);
+    ``cumulative_dv_mps`` is the total so far, so its last value is the solution's
+    ``total_dv_mps`` (transfers plus operations), as in the summary, ``cost.png`` and
+    ``solution.json``.
+    """
+    frame = solution.legs_frame()
+    if frame.empty:
+        return frame
+    per_debris = dict(solution.operations.get("per_debris_mps") or {})
+    operations = [float(per_debris.get(leg.to_id, 0.0)) for leg in solution.legs]
+    operations[0] += float(per_debris.get(solution.legs[0].from_id, 0.0))
+    frame["operations_dv_mps"] = operations
+    frame["cumulative_dv_mps"] = (frame["dv_mps"] + frame["operations_dv_mps"]).cumsum()
+    # the sum of rounded parts can differ from the total in the last digits: end on the total
+    frame.loc[frame.index[-1], "cumulative_dv_mps"] = solution.total_dv_mps
+    return frame
+
+
+def iterations_table(solution: Solution) -> pd.DataFrame:
+    """``iterations.csv``: the iterations, with ``step`` saying what became of each.
+
+    ``step`` is ``accepted``, ``rejected`` (the driver rejected the step; the
+    ``rejected`` column says why, e.g. a plan that ends after T_max) or ``no path``,
+    followed by ``, repeats iteration k`` when the path and values are those of an
+    earlier iteration (the driver went back to an earlier point).
+    """
+    frame = solution.iterations_frame()
+    if frame.empty:
+        return frame
+    seen: dict[tuple, int] = {}
+    steps = []
+    for record in solution.iterations:
+        key = (record.path, record.dv_linearized_mps, record.dv_true_mps,
+               record.duration_true_days)  # fmt: skip
+        step = "rejected" if record.rejected else "accepted" if record.path else "no path"
+        if record.path and key in seen:
+            step += f", repeats iteration {seen[key]}"
+        steps.append(step)
+        seen.setdefault(key, record.iteration)
+    frame["step"] = steps
+    return frame
+
+
 def write_run(
     folder: Path | str,
     solution: Solution,
@@ -66,14 +168,21 @@ def write_run(
     scenario_toml: str | None = None,
     catalog: Catalog | None = None,
     formats: tuple[str, ...] = ("png",),
+    log: str | None = None,
 ) -> list[Path]:
-    """Write a run's files to ``folder``, each atomically, ``solution.json`` last.
+    """Write a run folder: all its files aside, then swapped in at once.
 
-    Files: ``legs.csv``, ``iterations.csv``, ``edges.csv`` (if ``edges`` is given),
-    ``scenario.toml`` (if ``scenario_toml`` is given: the scenario as used), the
-    figures ``orbits``, ``raan``, ``cost``, ``iterations`` in each of ``formats`` (if
-    ``catalog`` is given, :func:`~sdc_cvx.report.plots.save_figures`), then
-    ``solution.json``, whose presence means the run is complete.
+    Files: ``legs.csv`` (:func:`legs_table`), ``iterations.csv``
+    (:func:`iterations_table`), ``edges.csv`` (if ``edges`` is given),
+    ``scenario.toml`` (if ``scenario_toml`` is given: the scenario as used), ``run.log``
+    (if ``log`` is given: the progress of the run), the figures ``orbits``, ``raan``,
+    ``cost``, ``iterations`` in each of ``formats`` (if a catalog is known,
+    :func:`~sdc_cvx.report.plots.save_figures`), and ``solution.json``.
+
+    The files are written to a hidden folder next to ``folder``, which then takes
+    ``folder``'s place in one rename (an earlier run folder there is replaced whole;
+    see the module docstring for the policy).  A kill at any moment leaves the old
+    folder or the new one, whole, and at most a hidden ``.NAME.*.partial`` folder.
 
     Parameters
     ----------
@@ -85,26 +194,124 @@ def write_run(
     Returns
     -------
     list of Path
-        The files written.
+        The files written (their final paths).
+
+    Raises
+    ------
+    FileExistsError
+        ``folder`` is refused (:func:`out_folder_problem`).
+    OSError
+        The folder cannot be written.
     """
     folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    problem = out_folder_problem(folder)
+    if problem is not None:
+        raise FileExistsError(problem)
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    _remove_stale_stages(folder)
+    stage = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial"))
+    try:
+        os.chmod(stage, file_mode(0o777))
+        names = _write_files(stage, solution, edges, scenario_toml, catalog, formats, log)
+        _pause_before_swap()
+        _swap_in(stage, folder)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        raise
+    return [folder / name for name in names]
+
+
+def _write_files(stage, solution, edges, scenario_toml, catalog, formats, log) -> list[str]:
     files = {
-        "legs.csv": solution.legs_frame().to_csv(index=False),
-        "iterations.csv": solution.iterations_frame().to_csv(index=False),
+        "legs.csv": legs_table(solution).to_csv(index=False, float_format=CSV_FLOAT_FORMAT),
+        "iterations.csv": iterations_table(solution).to_csv(
+            index=False, float_format=CSV_FLOAT_FORMAT
+        ),
     }
     if edges is not None:
-        files["edges.csv"] = edges.frame.to_csv(index=False)
+        files["edges.csv"] = edges.frame.to_csv(index=False, float_format=CSV_FLOAT_FORMAT)
     if scenario_toml is not None:
         files["scenario.toml"] = scenario_toml
-    written = []
+    if log is not None:
+        files["run.log"] = log
     for name, text in files.items():
-        write_atomic(folder / name, text)
-        written.append(folder / name)
+        write_atomic(stage / name, text)
+    written = [*files]
     catalog = solution.catalog if solution.catalog is not None else catalog
     if catalog is not None and formats:
         from .plots import save_figures  # matplotlib only when figures are drawn
 
-        written += save_figures(solution, catalog, folder, formats=tuple(formats))
-    write_atomic(folder / "solution.json", solution.to_json())  # last: the run is complete
-    return written + [folder / "solution.json"]
+        written += [p.name for p in save_figures(solution, catalog, stage, formats=tuple(formats))]
+    write_atomic(stage / "solution.json", solution.to_json())
+    return written + ["solution.json"]
+
+
+def _pause_before_swap() -> None:
+    """Tests only: ``SDC_CVX_PAUSE_BEFORE_SWAP=seconds`` holds the swap (to kill there)."""
+    seconds = os.environ.get("SDC_CVX_PAUSE_BEFORE_SWAP")
+    if seconds:
+        import time
+
+        time.sleep(float(seconds))
+
+
+def _remove_stale_stages(folder: Path) -> None:
+    """Remove the hidden folders a killed write left next to ``folder``."""
+    for stale in folder.parent.glob(f".{folder.name}.*.partial"):
+        if stale.is_dir():
+            shutil.rmtree(stale, ignore_errors=True)
+
+
+_RENAME_EXCHANGE = 2  # linux/fs.h
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two paths in one step (Linux ``renameat2(RENAME_EXCHANGE)``); False if unsupported."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        renameat2 = libc.renameat2
+    except (OSError, AttributeError):
+        return False
+    at_fdcwd = -100
+    result = renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), _RENAME_EXCHANGE)
+    return result == 0
+
+
+def _swap_in(stage: Path, folder: Path) -> None:
+    """Put ``stage`` in ``folder``'s place at once; the old content is removed."""
+    if not folder.exists():
+        os.rename(stage, folder)
+        return
+    if folder.is_dir() and not any(folder.iterdir()):
+        os.rename(stage, folder)  # replaces an empty folder
+        return
+    if _exchange(stage, folder):
+        shutil.rmtree(stage, ignore_errors=True)  # stage now holds the old folder
+        return
+    old = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial"))
+    os.rename(folder, old / "old")  # elsewhere: two renames, a moment without the folder
+    os.rename(stage, folder)
+    shutil.rmtree(old, ignore_errors=True)
+
+
+def save_solution(
+    solution: Solution,
+    folder: Path | str,
+    *,
+    formats: tuple[str, ...] = ("png",),
+    scenario_toml: str | None = None,
+) -> list[Path]:
+    """The run folder of ``solution``, as ``python -m sdc_cvx run --out`` writes it.
+
+    The edge table is that of the command line (the pre-optimisation of the solution's
+    catalog and mission); ``scenario.toml`` only when ``scenario_toml`` is given (a
+    :class:`~sdc_cvx.study.scenario.Scenario`'s ``to_toml()``).  :meth:`Solution.save`
+    calls this; the folder policy is :func:`write_run`'s.
+    """
+    from ..network.edges import preoptimize
+
+    edges = None
+    if solution.catalog is not None:
+        mission = solution.mission
+        edges = preoptimize(solution.catalog, mission, departure_day=mission.deorbit_days)
+    return write_run(folder, solution, edges, scenario_toml=scenario_toml, formats=formats)

@@ -48,7 +48,10 @@ def _executor(executor, scheduler, workers, pending: int) -> Iterator[cf.Executo
         return
     size = max(1, min(workers or os.cpu_count() or 1, pending))
     pool = cf.ProcessPoolExecutor(
-        max_workers=size, mp_context=_mp_context(), initializer=_one_thread_per_worker
+        max_workers=size,
+        mp_context=_mp_context(),
+        initializer=_init_worker,
+        initargs=(os.getpid(),),
     )
     try:
         yield pool
@@ -68,6 +71,54 @@ _OPENBLAS_SETTERS = (
     "openblas_set_num_threads64_",
     "scipy_openblas_set_num_threads64_",
 )
+
+
+_PR_SET_PDEATHSIG = 1  # linux/prctl.h
+_WATCH_SECONDS = 0.5
+
+
+def _init_worker(sweep_pid: int) -> None:
+    """Initializer of the local pool's processes: die with the sweep, one BLAS thread."""
+    _die_with(sweep_pid)
+    _one_thread_per_worker()
+
+
+def _die_with(sweep_pid: int) -> None:
+    """End this worker when the sweep's process dies, even by SIGKILL (no orphans computing
+    results nobody will read).
+
+    Two guards: on Linux the kernel sends SIGKILL when the worker's parent (the fork
+    server, which itself exits when the sweep dies) goes (``prctl(PR_SET_PDEATHSIG)``);
+    everywhere a daemon thread checks every half second that the sweep's process is
+    still there and ends the worker when it is not (``os._exit``).
+    """
+    import signal
+    import sys
+    import threading
+    import time
+
+    if sys.platform.startswith("linux"):
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+
+    def alive(pid: int) -> bool:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return False
+        except PermissionError:
+            return True
+        return True
+
+    def watch() -> None:
+        while alive(sweep_pid):
+            time.sleep(_WATCH_SECONDS)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="sdc-sweep-watchdog", daemon=True).start()
 
 
 def _one_thread_per_worker() -> None:
@@ -124,5 +175,6 @@ def _locked(out: Path) -> Iterator[None]:
         except OSError:
             raise SweepError(f"another sweep is writing to {out}") from None
         yield
+        (out / _LOCK_NAME).unlink(missing_ok=True)  # a finished folder keeps no lock file
     finally:
         handle.close()

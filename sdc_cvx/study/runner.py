@@ -24,6 +24,7 @@ from __future__ import annotations
 import concurrent.futures as cf
 import dataclasses
 import hashlib
+import importlib.util
 import os
 import sys
 import time
@@ -154,6 +155,8 @@ def run_study(
         isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
     ):
         raise ValueError(f"workers must be a positive integer, got {workers!r}")
+    if isinstance(scheduler, str | os.PathLike) and importlib.util.find_spec("distributed") is None:
+        raise SweepError("a Dask scheduler needs dask.distributed: pip install 'sdc_cvx[dask]'")
     out = Path(out_dir)
     planned = [_plan(item) for item in study.scenarios]
     out.mkdir(parents=True, exist_ok=True)
@@ -177,7 +180,7 @@ def run_study(
                     )
                 warnings.warn(
                     f"{len(lost)} scenario(s) did not return (status {LOST!r}){hint}; run "
-                    f"again with resume=True to finish them",
+                    f"again with resume=True (--resume) to finish them",
                     RuntimeWarning,
                     stacklevel=2,
                 )
@@ -229,8 +232,8 @@ def _previous_rows(out: Path, study: Study, planned, resume: bool) -> dict[str, 
         return {}
     if not resume:
         raise SweepError(
-            f"{out} already holds results.csv: pass resume=True to finish that sweep, or "
-            f"choose a new folder"
+            f"{out} already holds results.csv: pass resume=True (--resume on the command "
+            f"line) to finish that sweep, or choose a new folder"
         )
     previous = read_results(file)
     if previous.empty:

@@ -55,7 +55,7 @@ from pathlib import Path
 
 from ..errors import ScenarioError
 from ..inputs.catalog import Catalog
-from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS
+from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
 from ..inputs.selection import DEFAULT_MAX_ECCENTRICITY, select
 from ..milp.types import BACKENDS, SolverOptions
@@ -496,12 +496,14 @@ def _catalog(values: dict, base: Path, problems: list[str]) -> tuple[Path | None
     if not known:
         return path, fmt
     chosen = fmt is None
-    if chosen:
-        fmt = EXTENSION_FORMATS.get(path.suffix.lower())
+    if chosen:  # the content decides; the extension only when the content cannot tell
+        fmt = (sniff_format(path) if path.is_file() else None) or EXTENSION_FORMATS.get(
+            path.suffix.lower()
+        )
         if fmt is None:
             problems.append(
                 f"catalog.format: cannot tell the format of {path.name} from its "
-                f"extension; set catalog.format to one of "
+                f"content or its extension; set catalog.format to one of "
                 f"{', '.join(CATALOG_FORMATS)}"
             )
             return path, "csv"

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from sdc_cvx.errors import CatalogWarning
 from sdc_cvx.inputs.catalog import Catalog, CatalogError
 
 # Paper Table 5: id -> (a km, e, inc deg, initial RAAN deg), typed in from the paper.
@@ -97,7 +98,8 @@ def test_csv_ids_stay_strings_and_extra_columns_are_kept(tmp_path):
         f"{HEADER},name,norad\n"
         "5,7000,0,98,10,SL-8 R/B,007\n007,7100,0,98,20,,1e3\n1e3,7200,0,98,30,x,5\n"
     )
-    cat = Catalog.from_csv(write(tmp_path, text))
+    with pytest.warns(CatalogWarning, match="unknown column 'norad' is not used"):
+        cat = Catalog.from_csv(write(tmp_path, text))
     assert cat.ids == ("5", "007", "1e3")
     assert all(isinstance(value, str) for value in cat.frame["id"])
     assert list(cat.frame["name"]) == ["SL-8 R/B", "", "x"]

@@ -498,7 +498,9 @@ def test_scenario_files_read_every_format(tmp_path):
     assert load(scenario).catalog_format == "tle" and len(load(scenario).load_catalog()) == 81
     scenario.write_text(f'[catalog]\npath = "{gtoc9}"\nformat = "gtoc9"\n')
     assert len(load(scenario).load_catalog()) == 123
-    scenario.write_text(f'[catalog]\npath = "{gtoc9}"\n')  # .txt means tle: says what it is
+    scenario.write_text(f'[catalog]\npath = "{gtoc9}"\n')  # the content decides, not .txt
+    assert load(scenario).catalog_format == "gtoc9" and len(load(scenario).load_catalog()) == 123
+    scenario.write_text(f'[catalog]\npath = "{gtoc9}"\nformat = "tle"\n')  # forced: says so
     with pytest.raises(CatalogError, match="format 'gtoc9'"):
         load(scenario).load_catalog()
 
@@ -524,7 +526,9 @@ def test_cli_catalog_of_gtoc9_with_selection():
     kept = read_gtoc9(path).frame["altitude_km"].between(700, 800).sum()
     assert f"kept {kept} of 123 candidates (dropped: {123 - kept} altitude)" in result.stderr
     assert len(result.stdout.strip().splitlines()) == 1 + kept
-    result = CliRunner().invoke(main, ["catalog", str(path)])  # .txt means tle
+    result = CliRunner().invoke(main, ["catalog", str(path)])  # the content decides, not .txt
+    assert result.exit_code == 0 and "123 debris from " in result.stderr
+    result = CliRunner().invoke(main, ["catalog", str(path), "--format", "tle"])  # forced
     assert result.exit_code == 2 and "format 'gtoc9'" in result.stderr
 
 
@@ -550,10 +554,14 @@ def test_every_path_reads_through_the_one_format_table(tmp_path):
     with pytest.raises(CatalogError, match=hint):
         read_catalog(named_csv, "csv")
     assert len(read_catalog(named_csv)) == 81  # no format given: told from the content
+    # every path reads the content first: the scenario and the CLI read it as TLE too
     scenario = Scenario().with_overrides(catalog_path=named_csv)
-    assert scenario.catalog_format == "csv"
+    assert scenario.catalog_format == "tle" and len(scenario.load_catalog()) == 81
+    forced = Scenario().with_overrides(catalog_path=named_csv, catalog_format="csv")
     with pytest.raises(CatalogError, match=hint) as err:
-        scenario.load_catalog()
+        forced.load_catalog()
     assert any("missing required column" in p for p in err.value.problems)  # still said
     result = CliRunner().invoke(main, ["catalog", str(named_csv)])
+    assert result.exit_code == 0 and "81 debris from" in result.stderr
+    result = CliRunner().invoke(main, ["catalog", str(named_csv), "--format", "csv"])
     assert result.exit_code == 2 and hint in result.stderr

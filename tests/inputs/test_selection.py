@@ -36,7 +36,7 @@ def mixed():
         [
             ("733", "THOR AGENA D R/B", 780.0, 0.003, 99.0),
             ("815", "THOR AGENA D R/B", 950.2, 0.001, 99.9),
-            ("1433", "DELTA 1 R/B", 700.0, 0.080, 98.4),  # eccentric
+            ("1433", "DELTA 1 R/B", 880.0, 0.080, 98.4),  # eccentric (perigee 299 km)
             ("2000", "POLAR SAT", 800.0, 0.001, 90.3),  # near-polar: RAAN rate ~ 0
             ("34427", "COSMOS 2251 DEB", 790.0, 0.003, 74.0),  # prograde: fine
             ("34428", "COSMOS 2251 DEB", 600.0, 0.002, 89.6),  # polar and at the bound
@@ -119,8 +119,12 @@ def test_pykep_selection_says_why_objects_go():
     eccentric = sum(float("0." + line[26:33]) > 0.05 for line in lines if line.startswith("2 "))
     catalog = read_tle(path)
     kept, report = select(catalog)
-    assert len(report) == eccentric == 12  # GTO/Molniya-like debris of the set
-    assert (report["checks"] == "eccentricity").all()
+    # GTO/Molniya-like debris of the set, and 6 near-circular orbits above LEO (GPS, GEO)
+    assert report["checks"].str.contains("eccentricity").sum() == eccentric == 12
+    apogee = report["altitude_km"] + (report["altitude_km"] + R_T_KM) * report["e"]
+    assert len(report) == 18 and report["checks"].str.contains("above-leo").sum() == 14
+    assert (report[report["checks"] == "above-leo"]["altitude_km"] > 2000).all()
+    assert (report["checks"].str.contains("above-leo") == (apogee > 2000)).all()
     assert "COSMOS 2251 DEB" in set(kept.frame["name"])  # prograde fragments at 74 deg stay
     kept, report = select(catalog, altitude_km=(600, 900), inclination_deg=(96, 100.5))
     assert len(kept) + len(report) == len(catalog) == 499
@@ -130,7 +134,8 @@ def test_pykep_selection_says_why_objects_go():
     assert summary(kept, report) == (
         f"kept {len(kept)} of 499 candidates (dropped: "
         f"{report['checks'].str.contains('altitude').sum()} altitude, "
-        f"{report['checks'].str.contains('inclination').sum()} inclination, 12 eccentricity)"
+        f"{report['checks'].str.contains('inclination').sum()} inclination, 12 eccentricity, "
+        f"{report['checks'].str.contains('above-leo').sum()} above-leo)"
     )
 
 

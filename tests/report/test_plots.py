@@ -10,7 +10,7 @@ import pytest
 from matplotlib.figure import Figure
 from matplotlib.image import imread
 
-from sdc_cvx import Catalog, solve
+from sdc_cvx import Catalog
 from sdc_cvx.physics.plan import evaluate_plan
 from sdc_cvx.physics.transfer import NodeOrbits
 from sdc_cvx.report.plots import (
@@ -26,16 +26,6 @@ from sdc_cvx.solution import Leg
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 MU = 3.986e14
 R_EQ = 6378137.0
-
-
-@pytest.fixture(scope="module")
-def solution():
-    return solve()
-
-
-@pytest.fixture(scope="module")
-def catalog():
-    return Catalog.paper_case()
 
 
 @pytest.fixture(scope="module")
@@ -264,3 +254,61 @@ def test_save_figures_rejects_bad_input_before_writing(solution, catalog, tmp_pa
     with pytest.raises(ValueError, match="not in the catalog"):
         save_figures(solution, wrong, tmp_path / "b")
     assert not (tmp_path / "b").exists()
+
+
+def test_iterations_mark_rejected_steps_and_an_outlier_does_not_flatten_the_axis(solution):
+    """A rejected plan ending on day 85,519 of a 365-day mission (the TLE example): a red
+    cross, a marker at the top edge with its value, and an axis that still shows T_max."""
+    records = list(solution.iterations)
+    far = dataclasses.replace(
+        records[1], duration_true_days=85_519.0, rejected="true plan ends on day 85519.0"
+    )
+    other = dataclasses.replace(solution, iterations=(records[0], far, *records[2:]))
+    fig = plot_iterations(other)
+    left, right = fig.axes[0], fig.axes[1]
+    tmax = solution.mission.tmax_days
+    low, high = right.get_ylim()
+    assert tmax < high < 2 * tmax and low > 0  # the accepted durations and T_max set the axis
+    lines = {line.get_gid(): line for line in (*left.get_lines(), *right.get_lines())}
+    assert list(lines["rejected"].get_xdata()) == [far.iteration]
+    clipped = [line for line in right.get_lines() if line.get_gid() == "duration-clipped"]
+    assert len(clipped) == 1 and clipped[0].get_ydata()[0] == pytest.approx(high)
+    assert any("85,519 d" in text.get_text() for text in right.texts)
+    # the same figure without the rejection mark: the outlier still does not set the axis
+    assert plot_iterations(solution).axes[1].get_ylim()[1] < 2 * tmax
+
+
+def test_zero_length_leg_label_does_not_cover_its_neighbour(solution, catalog):
+    """A 1e-9-day leg (a RAAN crossing) gets its label above the line, not on the last one."""
+    legs = list(solution.legs)
+    legs[0] = dataclasses.replace(legs[0], duration_days=20.0)  # a short leg, then a 1e-9 d one
+    tiny = dataclasses.replace(
+        legs[1],
+        departure_day=legs[0].departure_day + legs[0].duration_days,
+        duration_days=1e-9,
+        drift_alt_km=legs[0].drift_alt_km,
+    )
+    other = dataclasses.replace(solution, legs=(legs[0], tiny, *legs[2:]))
+    ax = plot_orbits(other, catalog).axes[0]
+    boxes = {}
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(ax.figure)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    for text in ax.texts:
+        if "\u2192" in text.get_text() and "km," in text.get_text():
+            boxes[text.get_text().split("\n")[0]] = text.get_window_extent(renderer)
+    first, second = (
+        boxes[f"{legs[0].from_id}\u2192{legs[0].to_id}"],
+        boxes[f"{tiny.from_id}\u2192{tiny.to_id}"],
+    )
+    assert not first.overlaps(second)
+
+
+def test_cost_figure_total_is_the_solution_total_with_operations(solution):
+    ops = {"scenario": "vehicle", "per_debris_mps": {"8": 400.0, "2": 500.0}, "total_mps": 900.0}
+    other = dataclasses.replace(solution, operations=ops, total_dv_mps=solution.total_dv_mps + 900)
+    labels = [t.get_text() for t in plot_cost(other).axes[0].get_legend().get_texts()]
+    assert any(f"= {other.total_dv_mps:.1f} m/s" in label for label in labels)
+    assert any("900.0 m/s operations" in label for label in labels)

@@ -185,6 +185,12 @@ def test_results_table_and_files(reference, study_file):
         assert (folder / "solution.json").exists() == solved
         assert (folder / "error.txt").exists() != solved
     assert not list(out.rglob("*.tmp"))
+    assert not (out / ".sweep.lock").exists()  # a finished folder keeps no lock
+    umask = os.umask(0)
+    os.umask(umask)
+    for path in out.rglob("*"):  # readable by colleagues: 0644 under a 022 umask
+        if path.is_file():
+            assert path.stat().st_mode & 0o777 == 0o666 & ~umask, path
 
 
 def test_infeasible_scenario_is_recorded_while_the_others_succeed(reference):

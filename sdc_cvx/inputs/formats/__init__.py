@@ -63,9 +63,16 @@ def _format_hint(fmt: str):
                 return reader(path, *args, **kwargs)
             except CatalogError as err:
                 guess = sniff_format(path)
+                source = os.fspath(path)
+                if guess is None and len(err.problems) > NOT_A_FILE_PROBLEMS:
+                    # nothing in it reads as any format: say so, not 200,000 problems
+                    shown = [p if len(p) <= 160 else p[:157] + "..." for p in err.problems[:3]]
+                    hint = (f"{source}: this is not a {FORMAT_NAMES[fmt]} file (nor any catalog "
+                            f"format sdc_cvx reads: {', '.join(FORMATS)}); "
+                            f"{len(err.problems)} problems, the first ones:")  # fmt: skip
+                    raise CatalogError.collect(source, [hint, *shown]) from None
                 if guess is None or guess == fmt:
                     raise
-                source = os.fspath(path)
                 hint = (f"{source}: the content looks like a {guess!r} catalog, not {fmt!r}; "
                         f"read it with format {guess!r}")  # fmt: skip
                 raise CatalogError.collect(source, [hint, *err.problems]) from None
@@ -73,6 +80,12 @@ def _format_hint(fmt: str):
         return read
 
     return decorate
+
+
+NOT_A_FILE_PROBLEMS = 5
+"""A file whose content reads as no format and that gives more problems than this is
+said not to be a catalog at all (a random text file read as TLE)."""
+FORMAT_NAMES = {"csv": "CSV catalog", "tle": "TLE", "omm": "OMM", "gtoc9": "GTOC9 debris"}
 
 
 @dataclass(frozen=True)
@@ -94,7 +107,7 @@ def _table(*formats: CatalogFormat) -> dict[str, CatalogFormat]:
 
 FORMAT_TABLE: dict[str, CatalogFormat] = _table(
     CatalogFormat("csv", csv_format.read_csv, (".csv",)),
-    # a GTOC9 debris_data.txt needs format = "gtoc9"
+    # the content decides (sniff_format); the extension only when it cannot tell
     CatalogFormat("tle", tle.read_tle, (".tle", ".3le", ".2le", ".txt")),
     CatalogFormat("omm", omm.read_omm, (".omm", ".kvn", ".xml", ".json")),
     CatalogFormat("gtoc9", gtoc9.read_gtoc9, ()),

@@ -1,0 +1,179 @@
+"""The run folder: whole or not at all, readable by colleagues, and its numbers agree."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from sdc_cvx.report.plots import plot_cost
+from sdc_cvx.report.run_folder import out_folder_problem, write_atomic, write_run
+from sdc_cvx.study.scenario import load
+from tests.conftest import EXAMPLES, REPO
+
+RUN_FILES = {"solution.json", "legs.csv", "iterations.csv", "edges.csv", "orbits.png",
+             "raan.png", "cost.png", "iterations.png"}  # fmt: skip
+
+
+def snapshot(folder: Path) -> dict[str, bytes]:
+    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
+
+
+@pytest.fixture
+def umask_022():
+    old = os.umask(0o022)
+    yield
+    os.umask(old)
+
+
+def test_files_are_0644_under_umask_022(solution, tmp_path, umask_022):
+    written = solution.save(tmp_path / "run")
+    assert {p.name for p in written} == RUN_FILES
+    for path in written:
+        assert path.stat().st_mode & 0o777 == 0o644, path
+    assert (tmp_path / "run").stat().st_mode & 0o777 == 0o755
+    write_atomic(tmp_path / "one.txt", "x")
+    assert (tmp_path / "one.txt").stat().st_mode & 0o777 == 0o644
+
+
+def test_files_follow_a_stricter_umask(solution, tmp_path):
+    old = os.umask(0o077)
+    try:
+        written = solution.save(tmp_path / "run", formats=())
+    finally:
+        os.umask(old)
+    assert all(p.stat().st_mode & 0o777 == 0o600 for p in written)
+
+
+def test_an_earlier_run_folder_is_replaced_whole_and_no_stale_svg_stays(solution, tmp_path):
+    folder = tmp_path / "run"
+    solution.save(folder, formats=("svg",))
+    assert (folder / "cost.svg").exists()
+    solution.save(folder, formats=())  # again, without svg
+    assert {p.name for p in folder.iterdir()} == {n for n in RUN_FILES if ".png" not in n}
+    assert not list(tmp_path.glob(".*partial"))  # nothing aside left
+
+
+def test_a_folder_that_is_not_a_run_folder_is_refused(solution, tmp_path):
+    (tmp_path / "notes.txt").write_text("mine")
+    assert "not empty and is not an earlier run folder" in out_folder_problem(tmp_path)
+    with pytest.raises(FileExistsError, match="not an earlier run folder"):
+        solution.save(tmp_path)
+    assert [p.name for p in tmp_path.iterdir()] == ["notes.txt"]
+    (tmp_path / "file").write_text("")
+    assert "is a file" in out_folder_problem(tmp_path / "file")
+    assert "which is a file" in out_folder_problem(tmp_path / "file" / "run")
+    assert out_folder_problem(tmp_path / "new" / "run") is None
+
+
+def test_csv_files_carry_no_float_noise(solution, tmp_path):
+    solution.save(tmp_path / "run", formats=())
+    for name in ("legs.csv", "iterations.csv", "edges.csv"):
+        text = (tmp_path / "run" / name).read_text()
+        assert "00000000" not in text and "99999999" not in text, name
+
+
+def test_save_and_plot_for_python_users(solution, tmp_path):
+    figures = solution.plot()
+    assert list(figures) == ["orbits", "raan", "cost", "iterations"]
+    assert all(hasattr(fig, "savefig") for fig in figures.values())
+    written = solution.save(tmp_path / "run", formats=())
+    assert (tmp_path / "run" / "solution.json") in written
+    data = json.loads((tmp_path / "run" / "solution.json").read_text())
+    assert data["path"] == list(solution.path)
+
+
+@pytest.fixture(scope="module")
+def options_solution():
+    """examples/options.toml: the vehicle deorbits each debris (operations ΔV), rejected steps."""
+    from sdc_cvx import solve
+
+    scenario = load(EXAMPLES / "options.toml")
+    return scenario, solve(scenario.load_catalog(), scenario.mission, solver=scenario.solver)
+
+
+@pytest.mark.slow
+def test_summary_legs_cost_figure_and_json_agree_on_total_dv(options_solution, tmp_path):
+    scenario, solution = options_solution
+    assert solution.operations_dv_mps > 0  # the case of the issue: 2985.8 against 995.8
+    solution.save(tmp_path / "run", formats=(), scenario_toml=scenario.to_toml())
+    total = f"{solution.total_dv_mps:.1f}"
+    summary = solution.summary()
+    assert f"total dV  {total} m/s" in summary
+    legs = pd.read_csv(tmp_path / "run" / "legs.csv")
+    assert legs["cumulative_dv_mps"].iloc[-1] == pytest.approx(solution.total_dv_mps, abs=1e-6)
+    parts = legs["dv_mps"].sum() + legs["operations_dv_mps"].sum()
+    assert parts == pytest.approx(solution.total_dv_mps, abs=1e-6)
+    data = json.loads((tmp_path / "run" / "solution.json").read_text())
+    assert data["total_dv_mps"] == pytest.approx(solution.total_dv_mps, abs=1e-9)
+    labels = [t.get_text() for t in plot_cost(solution).axes[0].get_legend().get_texts()]
+    assert any(f"= {total} m/s" in label for label in labels), labels
+    # rejected steps are marked, in the table and in the summary's count
+    iterations = pd.read_csv(tmp_path / "run" / "iterations.csv")
+    rejected = iterations["step"].str.startswith("rejected")
+    assert rejected.sum() == sum(1 for r in solution.iterations if r.rejected) > 0
+    assert iterations.loc[rejected, "rejected"].str.len().gt(0).all()
+    assert f"{int(rejected.sum())} rejected" in summary
+    assert "path from the seeding" in summary  # the plan was held before the first MILP
+
+
+def run_cli(out: Path, env: dict | None = None) -> subprocess.Popen:
+    return subprocess.Popen(
+        [sys.executable, "-m", "sdc_cvx", "run", "--n", "3", "--quiet", "--out", str(out)],
+        cwd=REPO, env={**os.environ, **(env or {})},
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    )  # fmt: skip
+
+
+def whole(folder: Path) -> bool:
+    """Every file of a run folder, and legs.csv is that of solution.json."""
+    names = {p.name for p in folder.iterdir()}
+    if not RUN_FILES | {"scenario.toml", "run.log"} <= names:
+        return False
+    data = json.loads((folder / "solution.json").read_text())
+    legs = pd.read_csv(folder / "legs.csv")
+    return list(legs["dv_mps"]) == pytest.approx([leg["dv_mps"] for leg in data["legs"]])
+
+
+@pytest.mark.slow
+def test_a_kill_while_writing_leaves_the_old_folder_or_the_new_one_whole(tmp_path):
+    out = tmp_path / "run"
+    first = run_cli(out)
+    assert first.wait(timeout=120) == 0
+    old = snapshot(out)
+    # killed with every file written aside, just before the swap: the old folder, whole
+    second = run_cli(out, {"SDC_CVX_PAUSE_BEFORE_SWAP": "60"})
+    deadline = time.monotonic() + 120
+    staged = []
+    while time.monotonic() < deadline and second.poll() is None:
+        staged = [p for p in tmp_path.glob(".run.*.partial") if (p / "solution.json").exists()]
+        if staged:
+            break
+        time.sleep(0.1)
+    assert staged, "the run never reached the swap"
+    second.send_signal(signal.SIGKILL)
+    second.wait()
+    assert snapshot(out) == old
+    # killed at moments spread over the writing: always one folder or the other, whole
+    for delay in (3.0, 4.0, 5.0, 6.0):
+        third = run_cli(out)
+        time.sleep(delay)
+        third.send_signal(signal.SIGKILL)
+        third.wait()
+        assert snapshot(out) == old or whole(out), f"mixed folder after a kill at {delay} s"
+        old = snapshot(out)
+    # the next run cleans what the kills left aside
+    assert run_cli(out).wait(timeout=120) == 0 and whole(out)
+    assert not list(tmp_path.glob(".run.*.partial"))
+
+
+def test_write_run_refuses_before_writing(solution, tmp_path):
+    (tmp_path / "keep.txt").write_text("x")
+    with pytest.raises(FileExistsError):
+        write_run(tmp_path, solution)
+    assert [p.name for p in tmp_path.iterdir()] == ["keep.txt"]
