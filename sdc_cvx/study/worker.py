@@ -36,6 +36,11 @@ def solve_scenario(scenario_toml: str, key: str = "") -> dict:
         "status": ScenarioStatus.ERROR.value,
         "path": None,
         "total_dv_mps": math.nan,
+        "lower_bound_mps": math.nan,
+        "gap_mps": math.nan,
+        "gap_rel": math.nan,
+        "certified": False,
+        "method": None,
         "total_duration_days": math.nan,
         "iterations": None,
         "seconds": math.nan,
@@ -49,11 +54,17 @@ def solve_scenario(scenario_toml: str, key: str = "") -> dict:
         scenario = Scenario().with_overrides(**_flatten(data))
         row["backend"] = scenario.solver.backend
         catalog, _ = scenario.selection.apply(scenario.load_catalog())  # as `run` does
+        row["method"] = scenario.solver.method
         solution = solve(catalog, scenario.mission, solver=scenario.solver)
         row.update(
             status=str(solution.status),
             path="->".join(solution.path),
             total_dv_mps=float(solution.total_dv_mps),
+            lower_bound_mps=_or_nan(solution.lower_bound_mps),
+            gap_mps=_or_nan(solution.gap_mps),
+            gap_rel=_or_nan(solution.gap_rel),
+            certified=solution.certified,
+            method=solution.method,
             total_duration_days=float(solution.total_duration_days),
             iterations=len(solution.iterations),
             backend=solution.backend,
@@ -71,6 +82,10 @@ def solve_scenario(scenario_toml: str, key: str = "") -> dict:
         )
     row["seconds"] = time.perf_counter() - start
     return row
+
+
+def _or_nan(value) -> float:
+    return math.nan if value is None else float(value)
 
 
 def _one_line(err: BaseException) -> str:

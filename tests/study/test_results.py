@@ -14,6 +14,8 @@ from sdc_cvx.study.results import (
 
 def test_statuses_keep_the_strings_of_results_csv():
     assert SOLVED_STATUSES == (
+        "optimal",
+        "feasible",
         "converged",
         "converged_unconfirmed",
         "iteration_limit",

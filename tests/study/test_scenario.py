@@ -117,7 +117,7 @@ def test_catalog_path_is_relative_to_the_scenario_file(tmp_path, debris_csv, mon
     [
         ("[mission]\ntmax = 3\n", ["unknown key mission.tmax", "did you mean tmax_days",
                                    "allowed keys in [mission]: n, tmax_days"]),
-        ("[solver]\nbackend = 'HIGHS'\ngap = 0.1\n", ["unknown key solver.gap", "mip_gap"]),
+        ("[solver]\nbackend = 'HIGHS'\nmipgap = 0.1\n", ["unknown key solver.mipgap", "mip_gap"]),
         ("[catalog]\nfile = 'x.csv'\n", ["unknown key catalog.file", "path, format"]),
         ("[mision]\nn = 3\n", ["unknown table [mision]", "catalog, mission, solver"]),
         ("n = 3\n", ["'n' outside a table", "mission.n"]),

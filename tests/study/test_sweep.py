@@ -48,7 +48,9 @@ KEYS = 5  # 2 x 2 grid + 1 case
 @pytest.fixture(scope="module")
 def study_file(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("study")
-    shutil.copy(EXAMPLES / "paper.toml", folder / "paper.toml")
+    # the sweep machinery is under test, not the method: the paper's is the quicker here
+    paper = (EXAMPLES / "paper.toml").read_text()
+    (folder / "paper.toml").write_text(paper.replace('method = "certified"', 'method = "paper"'))
     (folder / "study.toml").write_text(STUDY)
     return folder / "study.toml"
 

@@ -1,0 +1,131 @@
+"""Certified answers: bound, gap and time per case (issue 13's goals).
+
+Prints, per case: N, n, T_max, the answer, its proven lower bound, the gap, the seconds,
+the relaxation MILPs solved and the date cells at the end; for the reference cases (with
+their independently certified optimum and the ratio to it), the paper case, the paper's
+catalog at other n and T_max, and GTOC9 (N = 123, n = 5).  Each case runs in its own
+process with a time limit (``--time-limit``), so one slow case cannot hold the rest.
+
+    python benchmarks/certify.py                       # every case, 120 s each
+    python benchmarks/certify.py --only syn05 paper    # some cases
+    python benchmarks/certify.py --csv benchmarks/results/certify.csv
+
+The machine it ran on is printed first: compare times within one run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import multiprocessing as mp
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"
+REFERENCE = SHARED / "reference_cases"
+
+
+def cases():
+    """(name, catalog loader spec, mission keywords, reference optimum or None)."""
+    out = []
+    if (REFERENCE / "optima.json").is_file():
+        optima = json.loads((REFERENCE / "optima.json").read_text())
+        for case, data in sorted(optima.items()):
+            for rule in ("table3", "free"):
+                if rule in data:
+                    out.append((f"{case}-{rule}", ("csv", str(REFERENCE / data["catalog"])),
+                                dict(n=data["n"], tmax_days=data["tmax_days"],
+                                     drift_inclination=rule),
+                                data[rule]["optimum_dv_mps"]))  # fmt: skip
+    out.append(("paper", ("paper", None), dict(n=5, tmax_days=365.25), None))
+    for n, tmax in ((4, 365.25), (6, 365.25), (5, 300.0), (5, 450.0)):
+        out.append((f"paper-n{n}-{tmax:g}d", ("paper", None), dict(n=n, tmax_days=tmax), None))
+    gtoc9 = SHARED / "gtoc9" / "debris_data.txt"
+    if gtoc9.is_file():
+        out.append(("gtoc9-123", ("gtoc9", str(gtoc9)), dict(n=5, tmax_days=365.25), None))
+    return out
+
+
+def run_case(spec, mission_kw, time_limit, queue):
+    from sdc_cvx import Catalog, Mission, MissionInfeasible, SolverOptions, solve
+
+    kind, path = spec
+    if kind == "paper":
+        catalog = Catalog.paper_case()
+    elif kind == "csv":
+        catalog = Catalog.from_csv(path)
+    else:
+        from sdc_cvx.inputs.formats import read_catalog
+
+        catalog = read_catalog(path, kind)
+    start = time.perf_counter()
+    try:
+        solution = solve(catalog, Mission(**mission_kw),
+                         solver=SolverOptions(time_limit_s=time_limit))  # fmt: skip
+    except MissionInfeasible:
+        queue.put(dict(N=len(catalog), status="infeasible", seconds=time.perf_counter() - start))
+        return
+    queue.put(dict(
+        N=len(catalog), status=str(solution.status), answer=solution.total_dv_mps,
+        lower=solution.lower_bound_mps, gap_mps=solution.gap_mps, gap_rel=solution.gap_rel,
+        seconds=time.perf_counter() - start, milps=solution.model_size.get("milp_solves"),
+        cells=solution.model_size.get("date_cells"), path="-".join(solution.path)))  # fmt: skip
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--time-limit", type=float, default=120.0, help="per case [s]")
+    parser.add_argument("--only", nargs="*", help="case names (or prefixes) to run")
+    parser.add_argument("--csv", help="also write the table here")
+    args = parser.parse_args(argv)
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
+          f"load {load:.1f}, Python {platform.python_version()}, "
+          f"time limit {args.time_limit:g} s per case")  # fmt: skip
+    header = (f"{'case':<20} {'N':>4} {'n':>2} {'T_max':>7} {'answer':>9} {'bound':>9} "
+              f"{'gap m/s':>8} {'gap %':>6} {'s':>6} {'MILPs':>5} {'cells':>5} "
+              f"{'status':<10} {'/opt':>7}")  # fmt: skip
+    print(header)
+    rows = []
+    for name, spec, mission_kw, optimum in cases():
+        if args.only and not any(name.startswith(k) for k in args.only):
+            continue
+        queue = mp.get_context("spawn").Queue()
+        proc = mp.get_context("spawn").Process(target=run_case,
+                                               args=(spec, mission_kw, args.time_limit, queue))
+        proc.start()
+        proc.join(args.time_limit * 2 + 60)
+        if proc.is_alive():
+            proc.kill()
+            result = dict(status="killed")
+        else:
+            result = queue.get() if not queue.empty() else dict(status="crashed")
+        ratio = (result.get("answer", float("nan")) / optimum) if optimum else float("nan")
+        row = dict(case=name, n=mission_kw["n"], tmax_days=mission_kw["tmax_days"],
+                   optimum=optimum, ratio=ratio, **result)  # fmt: skip
+        if isinstance(row.get("gap_rel"), float):
+            row["gap_pct"] = 100 * row["gap_rel"]
+        rows.append(row)
+
+        def num(key, fmt):
+            value = row.get(key)
+            return format(value, fmt) if isinstance(value, int | float) else "-"
+
+        print(f"{name:<20} {num('N', '4d'):>4} {row['n']:>2} {row['tmax_days']:>7g} "
+              f"{num('answer', '9.2f'):>9} {num('lower', '9.2f'):>9} {num('gap_mps', '8.2f'):>8} "
+              f"{num('gap_pct', '6.3f'):>6} "
+              f"{num('seconds', '6.1f'):>6} {num('milps', '5d'):>5} {num('cells', '5d'):>5} "
+              f"{row['status']:<10} {num('ratio', '7.4f'):>7}", flush=True)  # fmt: skip
+    if args.csv:
+        import pandas as pd
+
+        pd.DataFrame(rows).to_csv(args.csv, index=False, float_format="%.6g")
+        print(f"# written {args.csv}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
