@@ -94,8 +94,9 @@ def main(argv=None):
         if args.only and not any(name.startswith(k) for k in args.only):
             continue
         queue = mp.get_context("spawn").Queue()
-        proc = mp.get_context("spawn").Process(target=run_case,
-                                               args=(spec, mission_kw, args.time_limit, queue))
+        proc = mp.get_context("spawn").Process(
+            target=run_case, args=(spec, mission_kw, args.time_limit, queue)
+        )
         proc.start()
         proc.join(args.time_limit * 2 + 60)
         if proc.is_alive():
@@ -110,7 +111,7 @@ def main(argv=None):
             row["gap_pct"] = 100 * row["gap_rel"]
         rows.append(row)
 
-        def num(key, fmt):
+        def num(key, fmt, row=row):
             value = row.get(key)
             return format(value, fmt) if isinstance(value, int | float) else "-"
 

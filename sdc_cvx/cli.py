@@ -304,7 +304,13 @@ class RunProgress:
     def iteration(self, record) -> None:
         """The solver's progress callback (:func:`sdc_cvx.planner.sequential.solve`)."""
         self.say(iteration_line(record))
-        if not record.rejected:
+        if record.status == "bound":  # the certified search
+            self.iterations = record.iteration + 1
+            self.phase = (
+                f"after relaxation {record.iteration}: certifying its path, refining the date "
+                "cells, then the next relaxation MILP"
+            )
+        elif not record.rejected:
             self.iterations = record.iteration + 1
             self.phase = (
                 f"after MILP iteration {record.iteration}: the next MILP, or the "
@@ -437,7 +443,11 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     info(header)
     with RunProgress(show_progress) as steps:
         steps.say(header, show=False)
-        steps.set_phase("seeding: re-optimising cheap paths, then building the first MILP")
+        steps.set_phase(
+            "certified search: leg costs of every pair, cheap paths, then the first relaxation"
+            if solver.method == "certified"
+            else "seeding: re-optimising cheap paths, then building the first MILP"
+        )
         try:
             solution = solve(catalog, mission, solver=solver, progress=steps.iteration)
         except MissionInfeasible as err:

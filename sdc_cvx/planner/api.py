@@ -171,7 +171,7 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
     schedule = result.schedule
     plan = evaluate_plan(orbits, path, schedule.a_drift, schedule.inc_drift,
                          deorbit_days=nodes.deorbit_days, j2=mission.j2)  # fmt: skip
-    notes = list(result.notes)
+    notes = []
     if not (abs(plan.end_day - schedule.end_day) < 1e-6 and plan.end_day <= mission.tmax_days
             + 1e-6):  # fmt: skip
         # a zero-length leg (RAANs crossing) can round to a full cycle in Eq. 10's wrap:
@@ -181,6 +181,7 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
         plan = PlanEvaluation(schedule.departure_days,
                               schedule.arrival_days - schedule.departure_days,
                               schedule.arrival_days, schedule.dv_mps, schedule.end_day)  # fmt: skip
+    notes += result.notes  # the search's own notes last: why it stopped, if it did
     ids = nodes.catalog.ids
     status = RunStatus.OPTIMAL if result.status == "optimal" else RunStatus.FEASIBLE
     total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
