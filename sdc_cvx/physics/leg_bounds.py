@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .orbits import MU_EARTH, SECONDS_PER_DAY, circular_a_for_raan_rate, raan_rate
-from .transfer import NodeOrbits, minimize_on_interval, transfer_dv
+from .transfer import CLOSED_GAP_RAD, NodeOrbits, minimize_on_interval, transfer_dv
 
 TWO_PI = 2.0 * np.pi
 GRID_POINTS = 513
@@ -250,14 +250,17 @@ def leg_cost_at(legs: LegCosts, e, t, t_arrive, *, rule: str, j2: float, t_min: 
     rate_j = _rates_per_day(legs.target)[e]
     for side in (1.0, -1.0):
         mu = wrapped_gap(legs, e, t, side)
-        closed = (mu < 1e-9) | (TWO_PI - mu < 1e-9)
+        closed = (mu < CLOSED_GAP_RAD) | (TWO_PI - mu < CLOSED_GAP_RAD)
         with np.errstate(divide="ignore", invalid="ignore"):
             rate = rate_j + side * mu / duration
         for c in allowed_choices(legs, e, side, rule):
             zero = closed & (duration == 0.0)
             lo, hi = radius_interval(legs, e, c, rate, rate, j2=j2)
-            lo = np.where(zero, legs.a_low, lo)
-            hi = np.where(zero, legs.a_high, hi)
+            # a zero-length leg: any drift radius on this side of the asymptote (its rate
+            # at least the target's for side +1, at most for side -1: Table 3's pairing)
+            side_lo, side_hi = (rate_j, np.inf) if side > 0 else (-np.inf, rate_j)
+            z_lo, z_hi = radius_interval(legs, e, c, side_lo, side_hi, j2=j2)
+            lo, hi = np.where(zero, z_lo, lo), np.where(zero, z_hi, hi)
             value, a = legs.minimum_on(e, c, lo, hi)
             value = np.where(ok & ((duration > 0) | zero), value, np.inf)
             better = value < best

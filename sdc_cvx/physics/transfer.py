@@ -33,6 +33,9 @@ import numpy as np
 
 from .orbits import J2, MU_EARTH, circular_a_for_raan_rate, hohmann_dv, raan_rate, wrap_angle
 
+CLOSED_GAP_RAD = 1e-9
+"""RAAN gap [rad] below which two RAANs coincide (Eq. 10 gives a zero-length leg)."""
+
 
 class NodeOrbits(NamedTuple):
     """Orbits of debris (or of the vehicle) as broadcastable arrays.
@@ -105,7 +108,10 @@ def drift_duration(gap, rate_target, rate_drift):
     wrapped = wrap_angle(gap, relative)
     with np.errstate(divide="ignore", invalid="ignore"):
         duration = np.abs(wrapped / relative)
-    return np.where(wrapped == 0.0, 0.0, np.where(relative == 0.0, np.inf, duration))
+    # RAANs within CLOSED_GAP_RAD of each other coincide: a gap a rounding error short of
+    # a full turn (a departure computed at a RAAN crossing) is no gap, not a full cycle
+    closed = (np.abs(wrapped) < CLOSED_GAP_RAD) | (np.abs(wrapped) > 2.0 * np.pi - CLOSED_GAP_RAD)
+    return np.where(closed, 0.0, np.where(relative == 0.0, np.inf, duration))
 
 
 def drift_inclination(inc_from, inc_to, side):
