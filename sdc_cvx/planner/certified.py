@@ -311,12 +311,14 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     cycles: list[tuple[int, ...]] = []
     step_limit = MILP_STEP_S
     relax_lower, milp_solves, status, notes = -np.inf, 0, "feasible", []
+    proven = -np.inf  # the best lower bound so far: every bound found stays valid
     for iteration in range(max_iterations + 1):
         started = time.perf_counter()
         alive_edges = _undominated_edges(edge_from, edge_to, edge_floor, nodes, start_allowed,
                                          best["upper"])  # fmt: skip
         net = _Network(nodes, legs_table, edge_from, edge_to, parts, alive_edges)
         arcs, walk_lower = net.pruned(nodes, start_allowed, best["upper"])
+        proven = max(proven, min(walk_lower, best["upper"]))
         candidates = _beam(arcs, n, nodes, start_allowed, exclude=settled,
                            count=SEED_PATHS if iteration == 0 else 1)  # fmt: skip
         if iteration == 0:  # cheap plans first: they prune every relaxation after
@@ -350,7 +352,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         relax_lower = result.lower_mps
         if result.path and np.isfinite(relax_lower):
             try_path(result.path, "relaxation")
-        lower = min(relax_lower, min(settled.values(), default=np.inf))
+        proven = max(proven, min(relax_lower, min(settled.values(), default=np.inf)))
+        lower = proven
         row = dict(iteration=iteration, path=result.path, relaxation_mps=relax_lower,
                    lower_mps=lower, upper_mps=best["upper"], arcs=len(arcs),
                    cells=parts.count(), nodes=result.report.nodes,
@@ -371,7 +374,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         _refine(parts, net, arcs, result.arcs, split_pieces)
     else:
         notes.append(f"iteration limit ({max_iterations}) reached")
-    lower = min(relax_lower, min(settled.values(), default=np.inf))
+    lower = max(proven, min(relax_lower, min(settled.values(), default=np.inf)))
     if not np.isfinite(best["upper"]):
         status = "infeasible" if lower == np.inf else "no_plan"
     elif _within(best["upper"], lower, gap_rel):
