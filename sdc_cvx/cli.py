@@ -237,7 +237,9 @@ def iteration_line(record) -> str:
     """The progress line of an iteration, or of its rejection (the driver tells it twice)."""
     if record.status == "bound":  # a relaxation of the certified search
         plan = "-" if record.dv_true_mps is None else f"{record.dv_true_mps:.2f}"
-        return (f"  it {record.iteration:2d}  relaxation {record.dv_linearized_mps:.2f}  "
+        bound = record.dv_linearized_mps
+        bound = "none below the plan" if bound is None else f"{bound:.2f}"
+        return (f"  it {record.iteration:2d}  relaxation {bound}  "
                 f"best plan {plan} m/s  {record.seconds:6.2f} s  ({record.note})")  # fmt: skip
     if record.rejected:
         return f"  it {record.iteration:2d}  step rejected: {record.rejected}"

@@ -299,8 +299,18 @@ def test_sweep_command_rejects_a_bad_study_before_solving(tmp_path):
 def test_run_falls_back_from_an_unavailable_backend(tmp_path):
     result = CliRunner().invoke(
         main,
-        ["run", "--backend", "MOSEK", "--fallback", "HIGHS", "--n", "3", "--quiet", "--out",
-         str(tmp_path)],
+        [
+            "run",
+            "--backend",
+            "MOSEK",
+            "--fallback",
+            "HIGHS",
+            "--n",
+            "3",
+            "--quiet",
+            "--out",
+            str(tmp_path),
+        ],
     )
     assert result.exit_code == 0, result.output
     data = json.loads((tmp_path / "solution.json").read_text())
