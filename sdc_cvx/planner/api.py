@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import MissionInfeasible, SolverFailure
 from ..inputs.catalog import Catalog
-from ..inputs.mission import Mission
+from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
 from ..network.edges import drift_radius_bounds, node_orbits
 from ..physics.plan import PlanEvaluation, evaluate_plan
@@ -110,12 +110,16 @@ def _infeasible_message(mission: Mission) -> str:
     if mission.injection is not None:
         requests.append(f"injection = {list(mission.injection)}")
     asked = f" with {'; '.join(requests)}" if requests else ""
+    relax = ["those requests"] if requests else []
+    if mission.tmax_days < MAX_TMAX_DAYS:
+        relax.append("a longer mission (tmax_days)")
+    relax += [f"a wider drift altitude band {mission.drift_altitude_km}", "fewer debris (n)"]
+    if mission.deorbit_days > 0:
+        relax.append("shorter operations (deorbit_days)")
     return (
         f"proven: no path of n = {mission.n} debris ends within T_max = "
         f"{mission.tmax_days:g} days{asked} (certified search over every ordered pair of "
-        f"debris). Relax one of: {'those requests, ' if requests else ''}a longer mission "
-        f"(tmax_days), a wider drift altitude band {mission.drift_altitude_km}, fewer debris "
-        f"(n), or shorter operations (deorbit_days)"
+        f"debris). Relax one of: {', '.join(relax)}"
     )
 
 
@@ -131,12 +135,16 @@ def _infeasible_message(mission: Mission) -> str:
     if mission.injection is not None:
         requests.append(f"injection = {list(mission.injection)}")
     asked = f" with {'; '.join(requests)}" if requests else ""
+    relax = ["those requests"] if requests else []
+    if mission.tmax_days < MAX_TMAX_DAYS:
+        relax.append("a longer mission (tmax_days)")
+    relax += [f"a wider drift altitude band {mission.drift_altitude_km}", "fewer debris (n)"]
+    if mission.deorbit_days > 0:
+        relax.append("shorter operations (deorbit_days)")
     return (
         f"proven: no path of n = {mission.n} debris ends within T_max = "
         f"{mission.tmax_days:g} days{asked} (certified search over every ordered pair of "
-        f"debris). Relax one of: {'those requests, ' if requests else ''}a longer mission "
-        f"(tmax_days), a wider drift altitude band {mission.drift_altitude_km}, fewer debris "
-        f"(n), or shorter operations (deorbit_days)"
+        f"debris). Relax one of: {', '.join(relax)}"
     )
 
 
