@@ -284,7 +284,9 @@ def test_sweep_command_writes_one_row_per_scenario(tmp_path):
     assert result.exit_code == 0, result.output
     assert "2 of 3 scenarios solved" in result.output
     results = pd.read_csv(out / "results.csv")
-    assert sorted(results["status"]) == ["converged", "converged", "infeasible"]
+    assert sorted(results["status"]) == ["infeasible", "optimal", "optimal"]
+    solved = results[results["status"] == "optimal"]
+    assert (solved["gap_rel"] <= 1e-3).all() and solved["certified"].all()
 
 
 def test_sweep_command_rejects_a_bad_study_before_solving(tmp_path):

@@ -199,7 +199,7 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
         total_dv_mps=total,
         total_duration_days=float(plan.end_day),
         status=status,
-        backend=solver.backend,
+        backend="+".join(sorted({r["backend"] for r in result.log})) or solver.backend,
         mission=mission,
         iterations=tuple(records),
         operations={

@@ -338,6 +338,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                                   cuts=list(settled), cycles=cycles, solver_gap=gap_rel / 4,
                                   start=candidates[0][2] if candidates else None)  # fmt: skip
         milp_solves += 1
+        notes += [msg for msg in result.report.fallbacks if msg not in notes]
         if result.cycles:  # a subtour beside the path: forbid it and solve again
             cycles.extend(result.cycles)
             continue
@@ -357,7 +358,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         row = dict(iteration=iteration, path=result.path, relaxation_mps=relax_lower,
                    lower_mps=lower, upper_mps=best["upper"], arcs=len(arcs),
                    cells=parts.count(), nodes=result.report.nodes,
-                   solve_seconds=result.report.solve_seconds,
+                   solve_seconds=result.report.solve_seconds, backend=result.report.backend,
                    cvxpy_seconds=result.report.overhead_seconds,
                    seconds=time.perf_counter() - started)  # fmt: skip
         rows.append(row)

@@ -148,12 +148,13 @@ def test_worker_applies_the_scenarios_candidate_selection():
     """A [selection] table filters the sweep's candidates as it does for `run`."""
     scenario = Scenario.load(EXAMPLES / "paper.toml").with_overrides(n=3, tmax_days=200)
     free = solve_scenario(scenario.to_toml())
-    assert free["status"] == "converged"
+    assert free["status"] == "optimal" and free["certified"]  # the default method
     banned = free["path"].split("->")[0]
     filtered = scenario.with_overrides(**{"selection.exclude_ids": (banned,)})
     assert "[selection]" in filtered.to_toml()
     row = solve_scenario(filtered.to_toml())
-    assert row["status"] == "converged" and banned not in row["path"].split("->")
+    assert row["status"] == "optimal" and banned not in row["path"].split("->")
+    assert row["lower_bound_mps"] <= row["total_dv_mps"] and row["method"] == "certified"
     study = Study.from_dict({"base": str(EXAMPLES / "paper.toml"),
                              "grid": {"selection.exclude_ids": [[banned], ["1"]]}})  # fmt: skip
     assert [item.scenario.selection.exclude_ids for item in study.scenarios] == [(banned,), ("1",)]
