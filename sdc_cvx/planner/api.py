@@ -102,29 +102,6 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
 def _infeasible_message(mission: Mission) -> str:
     """Why no plan exists, with the requests that narrowed the search."""
-    requests = [f"{name} = {', '.join(value) if isinstance(value, tuple) else value}"
-                for name, value in (("must_include", mission.must_include),
-                                    ("exclude", mission.exclude), ("first", mission.first),
-                                    ("min_transfer_days", mission.min_transfer_days or None))
-                if value]  # fmt: skip
-    if mission.injection is not None:
-        requests.append(f"injection = {list(mission.injection)}")
-    asked = f" with {'; '.join(requests)}" if requests else ""
-    relax = ["those requests"] if requests else []
-    if mission.tmax_days < MAX_TMAX_DAYS:
-        relax.append("a longer mission (tmax_days)")
-    relax += [f"a wider drift altitude band {mission.drift_altitude_km}", "fewer debris (n)"]
-    if mission.deorbit_days > 0:
-        relax.append("shorter operations (deorbit_days)")
-    return (
-        f"proven: no path of n = {mission.n} debris ends within T_max = "
-        f"{mission.tmax_days:g} days{asked} (certified search over every ordered pair of "
-        f"debris). Relax one of: {', '.join(relax)}"
-    )
-
-
-def _infeasible_message(mission: Mission) -> str:
-    """Why no plan exists, with the requests that narrowed the search."""
     requests = [
         f"{name} = {', '.join(value) if isinstance(value, tuple) else value}"
         for name, value in (("must_include", mission.must_include), ("exclude", mission.exclude),

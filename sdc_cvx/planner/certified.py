@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..milp.types import SolverOptions
+from ..network.dominance import path_cost_floor
 from ..physics.leg_bounds import LegCosts, leg_box_bound
 from .fixed_path import PathProblem, PathSchedule, solve_path
 from .relaxation import Arcs, solve_relaxation
@@ -305,7 +306,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         if len(seed) == nodes.legs + 1:
             try_path(seed, "seed")
 
-    edge_floor = legs_table.floor(np.arange(len(edge_from))) + nodes.cost_mps[edge_to]
+    edge_floor = legs_table.floor(np.arange(len(edge_from)))
     parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, initial_cells)
     rows: list[dict] = []
     cycles: list[tuple[int, ...]] = []
@@ -314,8 +315,13 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     proven = -np.inf  # the best lower bound so far: every bound found stays valid
     for iteration in range(max_iterations + 1):
         started = time.perf_counter()
-        alive_edges = _undominated_edges(edge_from, edge_to, edge_floor, nodes, start_allowed,
-                                         best["upper"])  # fmt: skip
+        # an edge on no walk of L legs cheaper than the plan at any date leaves
+        alive_edges = (
+            path_cost_floor(
+                edge_from, edge_to, edge_floor, nodes.cost_mps, nodes.legs, first=nodes.first
+            )
+            <= best["upper"] + 1e-9
+        )
         net = _Network(nodes, legs_table, edge_from, edge_to, parts, alive_edges)
         arcs, walk_lower = net.pruned(nodes, start_allowed, best["upper"])
         proven = max(proven, min(walk_lower, best["upper"]))
@@ -396,27 +402,6 @@ def _with_limit(solver: SolverOptions, remaining: float) -> SolverOptions:
     from dataclasses import replace
 
     return replace(solver, time_limit_s=max(remaining, 1.0))
-
-
-def _undominated_edges(edge_from, edge_to, edge_floor, nodes, start_allowed, upper):
-    """Edges on some walk of L edges whose floor costs stay within ``upper``."""
-    if not np.isfinite(upper):
-        return np.ones(len(edge_from), dtype=bool)
-    n = len(nodes.ops_days)
-    start = np.where(start_allowed, nodes.cost_mps, np.inf)
-    forward, backward = [start], [np.zeros(n)]
-    for _ in range(nodes.legs):
-        f = np.full(n, np.inf)
-        np.minimum.at(f, edge_to, forward[-1][edge_from] + edge_floor)
-        forward.append(f)
-        b = np.full(n, np.inf)
-        np.minimum.at(b, edge_from, edge_floor + backward[-1][edge_to])
-        backward.append(b)
-    through = np.full(len(edge_from), np.inf)
-    for k in range(nodes.legs):
-        through = np.minimum(through, forward[k][edge_from] + edge_floor
-                             + backward[nodes.legs - 1 - k][edge_to])  # fmt: skip
-    return through <= upper + 1e-9
 
 
 def _refine(parts: _Partitions, net: _Network, arcs: Arcs, chosen, pieces: int = 2):
