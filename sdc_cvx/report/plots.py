@@ -506,6 +506,44 @@ def _legs_path(legs: Sequence[Leg]) -> list[str]:
 
 
 # ---------------------------------------------------------------------- Table 7
+def _plot_certified_search(solution: Solution) -> Figure:
+    """The certified search's history: each relaxation's bound and the best plan so far.
+
+    x: relaxation MILP; y: ΔV [m/s].  The proven lower bound at the end (the best of
+    every bound found, relaxations and settled paths) is the dotted line; the plan is
+    within the shaded gap of it.
+    """
+    fig, ax = _new_figure()
+    records = [r for r in solution.iterations if r.status == "bound"]
+    steps = [r.iteration for r in records]
+    bound = [np.nan if r.dv_linearized_mps is None else r.dv_linearized_mps for r in records]
+    plan = [np.nan if r.dv_true_mps is None else r.dv_true_mps for r in records]
+    ax.plot(steps, bound, marker="s", markersize=5, linestyle="--", color="#6baed6",
+            label="relaxation's bound (paths not yet settled)", gid="relaxation")  # fmt: skip
+    ax.plot(steps, plan, marker="o", markersize=5, color=_AFTER_COLOR,
+            label="best plan so far", gid="plan")  # fmt: skip
+    if solution.lower_bound_mps is not None:
+        ax.axhline(solution.lower_bound_mps, color=_LIMIT_COLOR, linestyle=":", linewidth=1.2,
+                   label=f"proven lower bound {solution.lower_bound_mps:.2f} m/s",
+                   gid="lower-bound")  # fmt: skip
+        ax.axhspan(solution.lower_bound_mps, solution.total_dv_mps, color=_LIMIT_COLOR,
+                   alpha=0.08, gid="gap")  # fmt: skip
+    finite = [v for v in bound + plan if np.isfinite(v)]
+    if finite:  # a relaxation far below the plan must not flatten the picture
+        top = max(finite + [solution.total_dv_mps])
+        low = max(min(finite), solution.total_dv_mps - 3 * (top - min(plan or [top])) - 50.0)
+        ax.set_ylim(low - 0.02 * (top - low) - 1e-3, top + 0.05 * (top - low) + 1e-3)
+    from matplotlib.ticker import MaxNLocator
+
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("relaxation MILP", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("\u0394V [m/s]", fontsize=_LABEL_SIZE)
+    ax.set_title(f"Certified search: {solution.quality()}", fontsize=_LABEL_SIZE)
+    ax.legend(fontsize=_NOTE_SIZE, loc="lower right")
+    ax.tick_params(labelsize=_TICK_SIZE)
+    return fig
+
+
 def plot_iterations(solution: Solution) -> Figure:
     """The sequential linearisation's history: the paper's Table 7 as a picture.
 
@@ -525,6 +563,8 @@ def plot_iterations(solution: Solution) -> Figure:
     matplotlib.figure.Figure
         x: iteration; y (left): ΔV [m/s]; y (right): duration [days].
     """
+    if solution.method == "certified":
+        return _plot_certified_search(solution)
     fig, ax = _new_figure()
     right = ax.twinx()
     right.tick_params(labelsize=_TICK_SIZE)

@@ -10,7 +10,7 @@ import pytest
 from matplotlib.figure import Figure
 from matplotlib.image import imread
 
-from sdc_cvx import Catalog
+from sdc_cvx import Catalog, solve
 from sdc_cvx.physics.plan import evaluate_plan
 from sdc_cvx.physics.transfer import NodeOrbits
 from sdc_cvx.report.plots import (
@@ -312,3 +312,18 @@ def test_cost_figure_total_is_the_solution_total_with_operations(solution):
     labels = [t.get_text() for t in plot_cost(other).axes[0].get_legend().get_texts()]
     assert any(f"= {other.total_dv_mps:.1f} m/s" in label for label in labels)
     assert any("900.0 m/s operations" in label for label in labels)
+
+
+def test_certified_search_history_shows_the_bound_and_the_plan():
+    """The iterations figure of a certified answer: its proven bound, not Table 7's axes."""
+    from sdc_cvx import Mission
+
+    certified = solve(mission=Mission(n=3))
+    fig = plot_iterations(certified)
+    ax = fig.axes[0]
+    assert len(fig.axes) == 1  # no duration axis: the search has no "true duration" per step
+    bound = [line for line in ax.get_lines() if line.get_gid() == "lower-bound"]
+    assert bound and bound[0].get_ydata()[0] == pytest.approx(certified.lower_bound_mps)
+    plan = [line for line in ax.get_lines() if line.get_gid() == "plan"][0]
+    assert plan.get_ydata()[-1] == pytest.approx(certified.total_dv_mps, abs=1e-6)
+    assert "optimal" in ax.get_title()
