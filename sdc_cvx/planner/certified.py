@@ -222,6 +222,85 @@ class _Network:
         return priced.take(keep), float(np.min(forward[L]))
 
 
+class _Search:
+    """What the certified search holds: the edges, the best plan, the settled paths, the
+    date cells and the best bound so far, with one method per step of the loop."""
+
+    def __init__(self, orbits, nodes: CertifiedNodes, a_low, a_high, *, deadline, say,
+                 initial_cells):  # fmt: skip
+        n = len(nodes.ops_days)
+        self.nodes, self.n, self.deadline, self.say = nodes, n, deadline, say
+        excluded = np.zeros(n, dtype=bool)
+        excluded[list(nodes.excluded)] = True
+        self.start_allowed = ~excluded
+        if nodes.first is not None:
+            self.start_allowed = np.arange(n) == nodes.first
+        ii, jj = np.nonzero(~np.eye(n, dtype=bool))
+        usable = ~excluded[ii] & ~excluded[jj]
+        if nodes.first is not None:
+            usable &= jj != nodes.first  # nothing flies back to the start
+        self.edge_from, self.edge_to = ii[usable], jj[usable]
+        self.edge_index = {(int(a), int(b)): k for k, (a, b) in
+                           enumerate(zip(self.edge_from, self.edge_to, strict=True))}  # fmt: skip
+        self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
+                                   a_low, a_high)  # fmt: skip
+        self.edge_floor = self.legs.floor(np.arange(len(self.edge_from)))
+        self.parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, initial_cells)
+        self.upper, self.path, self.schedule = np.inf, (), None
+        self.settled: dict[tuple, float] = {}  # path -> its certified lower bound [m/s]
+        self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
+        self.cycles: list[tuple[int, ...]] = []
+        self.notes: list[str] = []
+
+    def node_cost(self, path) -> float:
+        return float(np.sum(self.nodes.cost_mps[list(path)]))
+
+    def try_path(self, path, why: str) -> None:
+        """Certify one path (its best schedule and its lower bound), and hold it if better."""
+        path = tuple(int(k) for k in path)
+        if path in self.settled:
+            return
+        nodes = self.nodes
+        problem = PathProblem(
+            self.legs, tuple(self.edge_index[(a, b)] for a, b in zip(path[:-1], path[1:],
+                                                                     strict=True)),
+            tuple(float(nodes.ops_days[k]) for k in path), nodes.tmax_days, nodes.tmin_days,
+            nodes.rule, nodes.j2)  # fmt: skip
+        remaining = max(self.deadline - time.perf_counter(), 0.1)
+        schedule = solve_path(problem, tol_mps=PATH_TOL_MPS, time_limit_s=remaining,
+                              cutoff_mps=self.upper - self.node_cost(path))  # fmt: skip
+        self.settled[path] = schedule.lower_mps + self.node_cost(path)
+        total = schedule.upper_mps + self.node_cost(path)
+        if total < self.upper:
+            self.upper, self.path, self.schedule = total, path, schedule
+            self.say(f"  plan {'-'.join(map(str, path))}: {total:.2f} m/s ({why})")
+
+    def network(self):
+        """Arcs that could be on a plan better than the one held, and the walk bound."""
+        alive = path_cost_floor(self.edge_from, self.edge_to, self.edge_floor,
+                                self.nodes.cost_mps, self.nodes.legs,
+                                first=self.nodes.first) <= self.upper + 1e-9  # fmt: skip
+        net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive)
+        arcs, walk_lower = net.pruned(self.nodes, self.start_allowed, self.upper)
+        self.prove(min(walk_lower, self.upper))
+        return net, arcs, walk_lower
+
+    def prove(self, relaxation_bound: float) -> float:
+        """Raise the bound: every plan is on a settled path or above the relaxation's."""
+        settled = min(self.settled.values(), default=np.inf)
+        self.proven = max(self.proven, min(relaxation_bound, settled))
+        return self.proven
+
+    def candidates(self, arcs, count: int):
+        return _beam(arcs, self.n, self.nodes, self.start_allowed, exclude=self.settled,
+                     count=count)  # fmt: skip
+
+    def status(self, gap_rel: float) -> str:
+        if not np.isfinite(self.upper):
+            return "infeasible" if self.proven == np.inf else "no_plan"
+        return "optimal" if _within(self.upper, self.proven, gap_rel) else "feasible"
+
+
 def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             solver: SolverOptions | None = None, gap_rel: float = DEFAULT_GAP_REL,
             time_limit_s: float | None = None, seeds=(),
@@ -252,6 +331,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         Receives each relaxation's row (bound, plan, arcs, cells, seconds) when known.
     max_iterations : int
         Relaxations solved at most.
+    initial_cells, split_pieces : int
+        Date cells per debris at the start, and pieces a used cell is split into.
 
     Returns
     -------
@@ -259,138 +340,79 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     """
     clock = time.perf_counter()
     solver = SolverOptions() if solver is None else solver
-    say = progress or (lambda line: None)
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
-    n = len(nodes.ops_days)
-    excluded = np.zeros(n, dtype=bool)
-    excluded[list(nodes.excluded)] = True
-    start_allowed = ~excluded
-    if nodes.first is not None:
-        start_allowed = np.arange(n) == nodes.first
-    ii, jj = np.nonzero(~np.eye(n, dtype=bool))
-    usable = ~excluded[ii] & ~excluded[jj]
-    if nodes.first is not None:
-        usable &= jj != nodes.first
-    edge_from, edge_to = ii[usable], jj[usable]
-    legs_table = LegCosts.build(orbits.take(edge_from), orbits.take(edge_to), a_low, a_high)
-    say(f"certified search: {n} debris, {len(edge_from)} edges, {nodes.legs} legs")
-
-    def path_problem(path):
-        index = {(int(a), int(b)): k for k, (a, b) in enumerate(zip(edge_from, edge_to,
-                                                                   strict=True))}  # fmt: skip
-        edges = tuple(index[(a, b)] for a, b in zip(path[:-1], path[1:], strict=True))
-        return PathProblem(legs_table, edges, tuple(float(nodes.ops_days[k]) for k in path),
-                           nodes.tmax_days, nodes.tmin_days, nodes.rule, nodes.j2)  # fmt: skip
-
-    best = {"upper": np.inf, "path": (), "schedule": None}
-    settled: dict[tuple, float] = {}
-
-    def node_total(path):
-        return float(np.sum(nodes.cost_mps[list(path)]))
-
-    def try_path(path, why):
-        path = tuple(int(k) for k in path)
-        if path in settled:
-            return
-        cutoff = best["upper"] - node_total(path)
-        remaining = max(deadline - time.perf_counter(), 0.1)
-        schedule = solve_path(path_problem(path), tol_mps=PATH_TOL_MPS, cutoff_mps=cutoff,
-                              time_limit_s=remaining)  # fmt: skip
-        settled[path] = schedule.lower_mps + node_total(path)
-        total = schedule.upper_mps + node_total(path)
-        if total < best["upper"]:
-            best.update(upper=total, path=path, schedule=schedule)
-            say(f"  plan {'-'.join(map(str, path))}: {total:.2f} m/s ({why})")
-
+    search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
+                     say=progress or (lambda line: None), initial_cells=initial_cells)  # fmt: skip
+    search.say(f"certified search: {search.n} debris, {len(search.edge_from)} edges, "
+               f"{nodes.legs} legs")  # fmt: skip
     for seed in seeds:
         if len(seed) == nodes.legs + 1:
-            try_path(seed, "seed")
-
-    edge_floor = legs_table.floor(np.arange(len(edge_from)))
-    parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, initial_cells)
+            search.try_path(seed, "seed")
+    # cheap plans first, from a beam search over the first network: they prune the rest
+    _, arcs, _ = search.network()
+    for _, path, _ in search.candidates(arcs, SEED_PATHS):
+        search.try_path(path, "beam")
     rows: list[dict] = []
-    cycles: list[tuple[int, ...]] = []
-    step_limit = MILP_STEP_S
-    relax_lower, milp_solves, status, notes = -np.inf, 0, "feasible", []
-    proven = -np.inf  # the best lower bound so far: every bound found stays valid
-    for iteration in range(max_iterations + 1):
+    step_limit, milp_solves = MILP_STEP_S, 0
+    for iteration in range(1, max_iterations + 1):
         started = time.perf_counter()
-        # an edge on no walk of L legs cheaper than the plan at any date leaves
-        alive_edges = (
-            path_cost_floor(
-                edge_from, edge_to, edge_floor, nodes.cost_mps, nodes.legs, first=nodes.first
-            )
-            <= best["upper"] + 1e-9
-        )
-        net = _Network(nodes, legs_table, edge_from, edge_to, parts, alive_edges)
-        arcs, walk_lower = net.pruned(nodes, start_allowed, best["upper"])
-        proven = max(proven, min(walk_lower, best["upper"]))
-        candidates = _beam(arcs, n, nodes, start_allowed, exclude=settled,
-                           count=SEED_PATHS if iteration == 0 else 1)  # fmt: skip
-        if iteration == 0:  # cheap plans first: they prune every relaxation after
-            for _, path, _ in candidates:
-                try_path(path, "beam")
-            continue
+        net, arcs, walk_lower = search.network()
         if len(arcs) == 0 or not np.isfinite(walk_lower):
-            relax_lower = np.inf  # no walk of L legs at all, or none below the best plan
+            search.prove(np.inf)  # no walk of L legs at all, or none below the plan held
             break
         remaining = deadline - time.perf_counter()
         if remaining <= 0:
-            notes.append(f"time limit ({time_limit_s:g} s) reached")
+            search.notes.append(f"time limit ({time_limit_s:g} s) reached")
             break
-        options = _with_limit(solver, min(remaining, step_limit))
-        result = solve_relaxation(arcs, n_nodes=net.n_nodes, n_debris=n, legs=nodes.legs,
-                                  solver=options, must_visit=nodes.must_visit,
-                                  cuts=list(settled), cycles=cycles, solver_gap=gap_rel / 4,
-                                  start=candidates[0][2] if candidates else None)  # fmt: skip
+        start = search.candidates(arcs, 1)
+        result = solve_relaxation(
+            arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
+            solver=_with_limit(solver, min(remaining, step_limit)),
+            must_visit=nodes.must_visit, cuts=list(search.settled), cycles=search.cycles,
+            solver_gap=gap_rel / 4, start=start[0][2] if start else None)  # fmt: skip
         milp_solves += 1
-        notes += [msg for msg in result.report.fallbacks if msg not in notes]
+        search.notes += [m for m in result.report.fallbacks if m not in search.notes]
         if result.cycles:  # a subtour beside the path: forbid it and solve again
-            cycles.extend(result.cycles)
+            search.cycles.extend(result.cycles)
             continue
         stopped = result.report.status.value in ("time_limit", "no_solution")
-        if stopped and time.perf_counter() < deadline:
+        out_of_time = time.perf_counter() >= deadline
+        if stopped and not out_of_time:
             step_limit *= 2  # a MILP stopped at its step limit: its dual bound still counts
         if result.lower_mps is None:
-            if stopped and time.perf_counter() < deadline:
+            if stopped and not out_of_time:
                 continue
-            notes.append(f"relaxation MILP failed: {result.report.message}")
+            search.notes.append(f"relaxation MILP failed: {result.report.message}")
             break
-        relax_lower = result.lower_mps
-        if result.path and np.isfinite(relax_lower):
-            try_path(result.path, "relaxation")
-        proven = max(proven, min(relax_lower, min(settled.values(), default=np.inf)))
-        lower = proven
-        row = dict(iteration=iteration, path=result.path, relaxation_mps=relax_lower,
-                   lower_mps=lower, upper_mps=best["upper"], arcs=len(arcs),
-                   cells=parts.count(), nodes=result.report.nodes,
+        if result.path and np.isfinite(result.lower_mps):
+            search.try_path(result.path, "relaxation")
+        lower = search.prove(result.lower_mps)
+        row = dict(iteration=iteration, path=result.path, relaxation_mps=result.lower_mps,
+                   lower_mps=lower, upper_mps=search.upper, arcs=len(arcs),
+                   cells=search.parts.count(), nodes=result.report.nodes,
                    solve_seconds=result.report.solve_seconds, backend=result.report.backend,
                    cvxpy_seconds=result.report.overhead_seconds,
                    seconds=time.perf_counter() - started)  # fmt: skip
         rows.append(row)
         if on_iteration is not None:
             on_iteration(row)
-        say(f"  bound {lower:.2f}, plan {best['upper']:.2f} m/s ({len(arcs)} arcs, "
-            f"{parts.count()} cells, MILP {result.report.solve_seconds:.1f} s, "
-            f"{result.report.nodes} nodes)")  # fmt: skip
-        if not np.isfinite(relax_lower) or _within(best["upper"], lower, gap_rel):
+        search.say(f"  bound {lower:.2f}, plan {search.upper:.2f} m/s ({len(arcs)} arcs, "
+                   f"{search.parts.count()} cells, MILP {result.report.solve_seconds:.1f} s, "
+                   f"{result.report.nodes} nodes)")  # fmt: skip
+        if not np.isfinite(result.lower_mps) or _within(search.upper, lower, gap_rel):
             break
-        if stopped and time.perf_counter() >= deadline:
-            notes.append(f"time limit ({time_limit_s:g} s) reached during a MILP")
+        if stopped and out_of_time:
+            search.notes.append(f"time limit ({time_limit_s:g} s) reached during a MILP")
             break
-        _refine(parts, net, arcs, result.arcs, split_pieces)
+        _refine(search.parts, net, arcs, result.arcs, split_pieces)
     else:
-        notes.append(f"iteration limit ({max_iterations}) reached")
-    lower = max(proven, min(relax_lower, min(settled.values(), default=np.inf)))
-    if not np.isfinite(best["upper"]):
-        status = "infeasible" if lower == np.inf else "no_plan"
-    elif _within(best["upper"], lower, gap_rel):
-        status = "optimal"
-    lower = min(lower, best["upper"])
-    return CertifiedResult(best["path"], best["schedule"], best["upper"], lower, status, rows,
-                           milp_solves, parts.count(), time.perf_counter() - clock,
-                           tuple(notes), edges=int(len(edge_from)),
-                           paths_certified=len(settled))  # fmt: skip
+        search.notes.append(f"iteration limit ({max_iterations}) reached")
+    status = search.status(gap_rel)
+    return CertifiedResult(search.path, search.schedule, search.upper,
+                           min(search.proven, search.upper), status, rows, milp_solves,
+                           search.parts.count(), time.perf_counter() - clock,
+                           tuple(search.notes), edges=int(len(search.edge_from)),
+                           paths_certified=len(search.settled))  # fmt: skip
 
 
 def _within(upper, lower, gap_rel) -> bool:
