@@ -216,7 +216,7 @@ class _Network:
             cost = cost0 if k == 0 else a.cost
             through = forward[k][a.tail] + cost + backward[L - 1 - k][a.head]
             best = np.minimum(best, np.where(leg_ok, through, np.inf))
-        keep = best <= upper + 1e-9
+        keep = np.isfinite(best) & (best <= upper + 1e-9)  # inf: on no walk (a barred start)
         priced = Arcs(a.tail, a.head, a.debris_from, a.debris_to, np.where(from_start, cost0,
                                                                            a.cost))  # fmt: skip
         return priced.take(keep), float(np.min(forward[L]))
