@@ -36,7 +36,8 @@ from .sequential import INJECTION_ID, MissionNodes, SequentialSettings, make_leg
 
 def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
           solver: SolverOptions | None = None, settings: SequentialSettings | None = None,
-          progress: Callable[[IterationRecord], None] | None = None) -> Solution:  # fmt: skip
+          progress: Callable[[IterationRecord], None] | None = None,
+          log: Callable[[str], None] | None = None) -> Solution:  # fmt: skip
     """Plan the mission: select, order and transfer between n of the catalog's debris.
 
     Parameters
@@ -52,6 +53,10 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         Settings of the paper's method (``method="paper"`` only).
     progress : callable, optional
         Called with each :class:`IterationRecord` as soon as it is known.
+    log : callable, optional
+        Called with one line of text per step of the certified search as it starts or
+        ends (seeding plans, each refinement of the date cells, each relaxation MILP and
+        its bound), so that a long run never goes silent.
 
     Returns
     -------
@@ -89,7 +94,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
     result = certify(orbits, _certified_nodes(nodes, mission), a_low, a_high, solver=solver,
                      gap_rel=solver.gap, time_limit_s=solver.time_limit_s,
-                     on_iteration=on_iteration)  # fmt: skip
+                     on_iteration=on_iteration, progress=log, names=ids)  # fmt: skip
     if result.status == "infeasible":
         raise MissionInfeasible(_infeasible_message(mission))
     if result.status == "no_plan":

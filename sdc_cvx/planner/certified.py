@@ -51,6 +51,9 @@ DEFAULT_GAP_REL = 1e-3
 PATH_TOL_MPS = 0.01
 SEED_PATHS = 12
 BEAM_WIDTH = 1000
+CANDIDATES = 40
+"""Beam paths whose cells are refined together before a relaxation MILP is solved."""
+MAX_REFINE_ROUNDS = 30
 MILP_STEP_S = 10.0
 """First time limit of each relaxation MILP [s], doubled whenever one reaches it: a MILP
 stopped early still proves its dual bound and usually holds a path to refine around."""
@@ -217,6 +220,7 @@ class _Network:
             through = forward[k][a.tail] + cost + backward[L - 1 - k][a.head]
             best = np.minimum(best, np.where(leg_ok, through, np.inf))
         keep = np.isfinite(best) & (best <= upper + 1e-9)  # inf: on no walk (a barred start)
+        self.completion = backward
         priced = Arcs(a.tail, a.head, a.debris_from, a.debris_to, np.where(from_start, cost0,
                                                                            a.cost))  # fmt: skip
         return priced.take(keep), float(np.min(forward[L]))
@@ -227,8 +231,10 @@ class _Search:
     date cells and the best bound so far, with one method per step of the loop."""
 
     def __init__(self, orbits, nodes: CertifiedNodes, a_low, a_high, *, deadline, say,
-                 initial_cells):  # fmt: skip
+                 initial_cells, names=None, path_tol_rel=0.0):  # fmt: skip
         n = len(nodes.ops_days)
+        self.names = [str(k) for k in range(n)] if names is None else [str(v) for v in names]
+        self.path_tol_rel = path_tol_rel
         self.nodes, self.n, self.deadline, self.say = nodes, n, deadline, say
         excluded = np.zeros(n, dtype=bool)
         excluded[list(nodes.excluded)] = True
@@ -252,6 +258,9 @@ class _Search:
         self.cycles: list[tuple[int, ...]] = []
         self.notes: list[str] = []
 
+    def label(self, path) -> str:
+        return "-".join(self.names[k] for k in path)
+
     def node_cost(self, path) -> float:
         return float(np.sum(self.nodes.cost_mps[list(path)]))
 
@@ -267,13 +276,14 @@ class _Search:
             tuple(float(nodes.ops_days[k]) for k in path), nodes.tmax_days, nodes.tmin_days,
             nodes.rule, nodes.j2)  # fmt: skip
         remaining = max(self.deadline - time.perf_counter(), 0.1)
-        schedule = solve_path(problem, tol_mps=PATH_TOL_MPS, time_limit_s=remaining,
+        schedule = solve_path(problem, tol_mps=PATH_TOL_MPS, tol_rel=self.path_tol_rel,
+                              time_limit_s=remaining,
                               cutoff_mps=self.upper - self.node_cost(path))  # fmt: skip
         self.settled[path] = schedule.lower_mps + self.node_cost(path)
         total = schedule.upper_mps + self.node_cost(path)
         if total < self.upper:
             self.upper, self.path, self.schedule = total, path, schedule
-            self.say(f"  plan {'-'.join(map(str, path))}: {total:.2f} m/s ({why})")
+            self.say(f"  plan {self.label(path)}: {total:.2f} m/s ({why})")
 
     def network(self):
         """Arcs that could be on a plan better than the one held, and the walk bound."""
@@ -283,6 +293,7 @@ class _Search:
         net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive)
         arcs, walk_lower = net.pruned(self.nodes, self.start_allowed, self.upper)
         self.prove(min(walk_lower, self.upper))
+        self.completion = net.completion
         return net, arcs, walk_lower
 
     def prove(self, relaxation_bound: float) -> float:
@@ -293,7 +304,12 @@ class _Search:
 
     def candidates(self, arcs, count: int):
         return _beam(arcs, self.n, self.nodes, self.start_allowed, exclude=self.settled,
-                     count=count)  # fmt: skip
+                     count=count, completion=self.completion)  # fmt: skip
+
+    def open_paths(self, arcs, gap_rel: float):
+        """Beam paths (not settled) whose arc bounds could beat the plan by more than the gap."""
+        target = self.upper - _allowed(self.upper, gap_rel) if np.isfinite(self.upper) else np.inf
+        return [c for c in self.candidates(arcs, CANDIDATES) if c[0] < target]
 
     def status(self, gap_rel: float) -> str:
         if not np.isfinite(self.upper):
@@ -305,7 +321,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             solver: SolverOptions | None = None, gap_rel: float = DEFAULT_GAP_REL,
             time_limit_s: float | None = None, seeds=(),
             progress: Callable[[str], None] | None = None,
-            on_iteration: Callable[[dict], None] | None = None,
+            on_iteration: Callable[[dict], None] | None = None, names=None,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
             split_pieces: int = 2) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
@@ -329,6 +345,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         Receives one line of text per step.
     on_iteration : callable, optional
         Receives each relaxation's row (bound, plan, arcs, cells, seconds) when known.
+    names : sequence of str, optional
+        The nodes' names in progress lines (default their positions).
     max_iterations : int
         Relaxations solved at most.
     initial_cells, split_pieces : int
@@ -342,7 +360,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     solver = SolverOptions() if solver is None else solver
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
-                     say=progress or (lambda line: None), initial_cells=initial_cells)  # fmt: skip
+                     say=progress or (lambda line: None), initial_cells=initial_cells,
+                     names=names, path_tol_rel=gap_rel / 2)  # fmt: skip
     search.say(f"certified search: {search.n} debris, {len(search.edge_from)} edges, "
                f"{nodes.legs} legs")  # fmt: skip
     for seed in seeds:
@@ -357,6 +376,19 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     for iteration in range(1, max_iterations + 1):
         started = time.perf_counter()
         net, arcs, walk_lower = search.network()
+        for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
+            if len(arcs) == 0 or time.perf_counter() >= deadline:
+                break
+            open_paths = search.open_paths(arcs, gap_rel)
+            if not open_paths:
+                break
+            search.try_path(open_paths[0][1], "network")
+            _refine(search.parts, net, arcs, np.concatenate([rows for *_, rows in open_paths]),
+                    split_pieces)  # fmt: skip
+            search.say(f"  refine the cells of {len(open_paths)} paths whose bounds (from "
+                       f"{open_paths[0][0]:.2f} m/s) are under the plan's "
+                       f"{search.upper:.2f} m/s: {search.parts.count()} cells")  # fmt: skip
+            net, arcs, walk_lower = search.network()
         if len(arcs) == 0 or not np.isfinite(walk_lower):
             search.prove(np.inf)  # no walk of L legs at all, or none below the plan held
             break
@@ -365,6 +397,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             search.notes.append(f"time limit ({time_limit_s:g} s) reached")
             break
         start = search.candidates(arcs, 1)
+        search.say(f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
+                   f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)")
         result = solve_relaxation(
             arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
             solver=_with_limit(solver, min(remaining, step_limit)),
@@ -374,6 +408,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         search.notes += [m for m in result.report.fallbacks if m not in search.notes]
         if result.cycles:  # a subtour beside the path: forbid it and solve again
             search.cycles.extend(result.cycles)
+            if result.lower_mps is not None:
+                search.prove(result.lower_mps)  # a relaxation with subtours still bounds
             continue
         stopped = result.report.status.value in ("time_limit", "no_solution")
         out_of_time = time.perf_counter() >= deadline
@@ -415,9 +451,13 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                            paths_certified=len(search.settled))  # fmt: skip
 
 
+def _allowed(upper, gap_rel) -> float:
+    """The gap a certificate may leave below a plan of ``upper`` m/s [m/s]."""
+    return max(gap_rel * abs(upper), PATH_TOL_MPS)
+
+
 def _within(upper, lower, gap_rel) -> bool:
-    allowed = max(gap_rel * abs(upper), PATH_TOL_MPS) * (1 + 1e-9)
-    return bool(np.isfinite(upper) and upper - lower <= allowed)
+    return bool(np.isfinite(upper) and upper - lower <= _allowed(upper, gap_rel) * (1 + 1e-9))
 
 
 def _with_limit(solver: SolverOptions, remaining: float) -> SolverOptions:
@@ -446,6 +486,7 @@ def _beam(
     exclude=(),
     width: int = BEAM_WIDTH,
     count: int = 1,
+    completion=None,
 ) -> list[tuple[float, tuple, tuple]]:
     """Cheapest simple paths under the arc bounds, leg by leg (a beam search).
 
@@ -455,16 +496,19 @@ def _beam(
     by_tail: dict[int, list[int]] = {}
     for row in range(len(arcs)):
         by_tail.setdefault(int(arcs.tail[row]), []).append(row)
-    beam = [(0.0, (int(i),), int(i), ()) for i in np.flatnonzero(start_allowed)]
-    for _ in range(nodes.legs):
-        grown = [(cost + arcs.cost[r], path + (int(arcs.debris_to[r]),), int(arcs.head[r]),
+    L = nodes.legs
+    beam = [(0.0, 0.0, (int(i),), int(i), ()) for i in np.flatnonzero(start_allowed)]
+    for k in range(L):
+        rest = completion[L - 1 - k] if completion is not None else None
+        grown = [(cost + arcs.cost[r] + (rest[arcs.head[r]] if rest is not None else 0.0),
+                  cost + arcs.cost[r], path + (int(arcs.debris_to[r]),), int(arcs.head[r]),
                   rows + (r,))
-                 for cost, path, node, rows in beam for r in by_tail.get(node, ())
+                 for _, cost, path, node, rows in beam for r in by_tail.get(node, ())
                  if arcs.debris_to[r] not in path]  # fmt: skip
         beam = heapq.nsmallest(width, grown)
     required, excluded = set(nodes.must_visit), set(exclude)
     out, seen = [], set()
-    for cost, path, _, rows in sorted(beam):
+    for _, cost, path, _, rows in sorted(beam):
         if path not in seen and path not in excluded and required <= set(path):
             seen.add(path)
             out.append((float(cost), path, rows))

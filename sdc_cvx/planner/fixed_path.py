@@ -41,6 +41,8 @@ INITIAL_CELLS = 24
 MIN_CELL_DAYS = 1e-5
 SPLIT = 4
 """Parts a cell of the lower bound's chain is split into each round."""
+SPLIT_CELLS = 16
+"""Most cells of one position split in a round (those of the lowest bounds first)."""
 GRID_CAP = 72
 """Most grid dates per position in the upper-bound programme (the best cells' first)."""
 
@@ -171,10 +173,8 @@ class _BoundCache:
         self.matrix = np.empty((0, 0))
 
     def update(self, problem: PathProblem, k: int, cells_from: _Cells, cells_to: _Cells):
-        old_r = {c: n for n, c in enumerate(self.rows)}
-        old_c = {c: n for n, c in enumerate(self.cols)}
-        r_map = np.array([old_r.get(c, -1) for c in cells_from.ids], dtype=int)
-        c_map = np.array([old_c.get(c, -1) for c in cells_to.ids], dtype=int)
+        r_map = _positions(self.rows, cells_from.ids)
+        c_map = _positions(self.cols, cells_to.ids)
         out = np.full((len(cells_from), len(cells_to)), np.nan)
         known = (r_map[:, None] >= 0) & (c_map[None, :] >= 0)
         if known.any():
@@ -191,6 +191,14 @@ class _BoundCache:
         return out
 
 
+def _positions(old_ids, ids):
+    """Index of each of ``ids`` in ``old_ids`` (-1 where absent)."""
+    size = int(max(old_ids.max(initial=-1), ids.max(initial=-1))) + 1
+    where = np.full(size, -1, dtype=int)
+    where[old_ids] = np.arange(len(old_ids))
+    return where[ids]
+
+
 def crossing_dates(legs: LegCosts, e: int, start: float, stop: float) -> np.ndarray:
     """Dates in [start, stop] [days] where the RAANs of edge ``e``'s two debris coincide."""
     rel = (legs.target.rate[e] - legs.origin.rate[e]) * SECONDS_PER_DAY
@@ -202,16 +210,17 @@ def crossing_dates(legs: LegCosts, e: int, start: float, stop: float) -> np.ndar
     return np.sort((TWO_PI * ks - gap0) / rel)
 
 
-def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, cutoff_mps: float = np.inf,
-               max_rounds: int = 200, time_limit_s: float = np.inf,
+def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 0.0,
+               cutoff_mps: float = np.inf, max_rounds: int = 200, time_limit_s: float = np.inf,
                initial_cells: int = INITIAL_CELLS) -> PathSchedule:  # fmt: skip
     """Certified minimum ΔV schedule of a fixed path (branch and bound over date cells).
 
     Parameters
     ----------
     problem : PathProblem
-    tol_mps : float
-        Stop when the best schedule is within this of the lower bound [m/s].
+    tol_mps, tol_rel : float
+        Stop when the best schedule is within ``max(tol_mps, tol_rel * schedule)`` of
+        the lower bound [m/s, -].
     cutoff_mps : float
         Stop as soon as the lower bound exceeds this [m/s] (the path cannot beat a plan
         in hand); the schedule returned is then the best found so far.
@@ -255,7 +264,8 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, cutoff_mps: float
         plan = _grid_schedule(problem, cells, special, forward, backward)
         if plan is not None and plan[0] < best_upper:
             best_upper, best_plan = plan
-        if best_upper - lower <= tol_mps or lower > cutoff_mps:
+        tol = max(tol_mps, tol_rel * best_upper) if np.isfinite(best_upper) else tol_mps
+        if best_upper - lower <= tol or lower > cutoff_mps:
             break
         if time.perf_counter() - start_clock > time_limit_s:
             break
@@ -268,6 +278,8 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, cutoff_mps: float
             through = forward[k] + backward[k]
             keep = through <= limit
             split = np.zeros(len(cells[k]), dtype=bool)
+            split[np.argsort(through)[:SPLIT_CELLS]] = True
+            split &= through < limit - tol
             split[chain[k]] = True
             new_cells.append(cells[k].refine(split, keep))
         unchanged = (np.array_equal(a.ids, b.ids) for a, b in zip(cells, new_cells, strict=True))
