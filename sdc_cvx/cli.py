@@ -234,13 +234,8 @@ def edges(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_ma
 
 # ---------------------------------------------------------------------- run
 def iteration_line(record) -> str:
-    """The progress line of an iteration, or of its rejection (the driver tells it twice)."""
-    if record.status == "bound":  # a relaxation of the certified search
-        plan = "-" if record.dv_true_mps is None else f"{record.dv_true_mps:.2f}"
-        bound = record.dv_linearized_mps
-        bound = "none below the plan" if bound is None else f"{bound:.2f}"
-        return (f"  it {record.iteration:2d}  relaxation {bound}  "
-                f"best plan {plan} m/s  {record.seconds:6.2f} s  ({record.note})")  # fmt: skip
+    """The progress line of an iteration of the paper's method, or of its rejection (the
+    driver tells it twice); the certified search writes its own lines."""
     if record.rejected:
         return f"  it {record.iteration:2d}  step rejected: {record.rejected}"
     dv_lin = "-" if record.dv_linearized_mps is None else f"{record.dv_linearized_mps:8.1f}"
@@ -253,24 +248,27 @@ def iteration_line(record) -> str:
     ).rstrip()
 
 
-def print_iteration(record):
-    """One progress line per iteration (to stderr)."""
-    click.echo(iteration_line(record), err=True)
-
-
 class RunProgress:
     """The progress of a run: to stderr when asked (a terminal), and always to ``run.log``.
 
-    Every phase is named: reading and seeding, each MILP iteration (and the rejection of a
-    step, with why), the re-optimisation and the writing.  While a phase is silent, a
-    heartbeat line says what is running and for how long, every ``heartbeat_s`` seconds.
+    Every phase is named: reading, each step of the certified search (plans, refinements,
+    each relaxation MILP as it starts and its bound) or of the paper's method (each MILP
+    iteration, the rejection of a step with why, the re-optimisation), and the writing.
+    While a phase is silent, a heartbeat line says what is running and for how long,
+    every ``heartbeat_s`` seconds.  With ``live_log``, every line is also appended to that
+    file as it is said, so that a killed run leaves its progress behind.
     """
 
-    def __init__(self, show: bool, heartbeat_s: float = 5.0):
+    def __init__(self, show: bool, heartbeat_s: float = 5.0, live_log: Path | None = None):
         import threading
         import time
 
         self.show, self.heartbeat_s, self._time = show, heartbeat_s, time.monotonic
+        self.live_log = live_log
+        self._file = None
+        if live_log is not None:
+            live_log.parent.mkdir(parents=True, exist_ok=True)
+            self._file = open(live_log, "w", encoding="utf-8", buffering=1)  # noqa: SIM115
         self.lines: list[str] = []
         self.started = self._last = self._time()
         self.phase = "reading the catalog"
@@ -288,6 +286,13 @@ class RunProgress:
         self._stop.set()
         if self._thread.is_alive():
             self._thread.join()
+        if self._file is not None:
+            self._file.close()
+
+    def discard_live_log(self) -> None:
+        """The run folder now holds ``run.log``: remove the live copy beside it."""
+        if self.live_log is not None:
+            self.live_log.unlink(missing_ok=True)
 
     def say(self, line: str, *, show: bool = True) -> None:
         from datetime import UTC, datetime
@@ -295,6 +300,8 @@ class RunProgress:
         with self._lock:
             stamp = datetime.now(UTC).strftime("%H:%M:%S")
             self.lines.append(f"{stamp} {line}")
+            if self._file is not None and not self._file.closed:
+                self._file.write(f"{stamp} {line}\n")
             self._last = self._time()
             if self.show and show:
                 click.echo(line, err=True)
@@ -303,16 +310,18 @@ class RunProgress:
         self.phase = phase
         self.say(f"  ... {phase}")
 
+    def search_step(self, line: str) -> None:
+        """The certified search's log callback: one line per step, the phase it is in."""
+        self.say(line)
+        self.phase = f"certified search, since: {line.strip()}"
+
     def iteration(self, record) -> None:
-        """The solver's progress callback (:func:`sdc_cvx.planner.sequential.solve`)."""
-        self.say(iteration_line(record))
-        if record.status == "bound":  # the certified search
+        """The solver's progress callback (:func:`sdc_cvx.planner.api.solve`)."""
+        if record.status == "bound":  # the certified search: its own lines tell the step
             self.iterations = record.iteration + 1
-            self.phase = (
-                f"after relaxation {record.iteration}: certifying its path, refining the date "
-                "cells, then the next relaxation MILP"
-            )
-        elif not record.rejected:
+            return
+        self.say(iteration_line(record))
+        if not record.rejected:
             self.iterations = record.iteration + 1
             self.phase = (
                 f"after MILP iteration {record.iteration}: the next MILP, or the "
@@ -443,7 +452,10 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
     header = run_header(catalog, mission, solver)
     info(header)
-    with RunProgress(show_progress) as steps:
+    # the progress goes to OUT.log beside the run folder while the run lasts (a killed run
+    # leaves it there), then into the folder as run.log
+    live_log = Path(out_dir).with_name(Path(out_dir).name + ".log") if out_dir else None
+    with RunProgress(show_progress, live_log=live_log) as steps:
         steps.say(header, show=False)
         steps.set_phase(
             "certified search: leg costs of every pair, cheap paths, then the first relaxation"
@@ -451,11 +463,14 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
             else "seeding: re-optimising cheap paths, then building the first MILP"
         )
         try:
-            solution = solve(catalog, mission, solver=solver, progress=steps.iteration)
+            solution = solve(catalog, mission, solver=solver, progress=steps.iteration,
+                             log=steps.search_step)
         except MissionInfeasible as err:
+            steps.discard_live_log()  # a proven answer: the message says it all
             fail(f"infeasible mission: {err}", exit_code(err))
         except SolverFailure as err:
-            fail(f"solver failure: {err}", exit_code(err))
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            fail(f"solver failure: {err}{kept}", exit_code(err))
         steps.set_phase("writing the run folder")
         steps.say(solution.summary(), show=False)
         edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
@@ -465,6 +480,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         write_run(folder, solution, edge_table, scenario_toml=scenario.to_toml(),
                   catalog=catalog, formats=("png", "svg") if svg else ("png",),
                   log=steps.log_text())  # fmt: skip
+        steps.discard_live_log()
     except OSError as err:
         fail(f"cannot write the run folder {folder or '.'}: {err.strerror or err}")
     start = None  # the mission start date the RAANs refer to (Catalog.start)

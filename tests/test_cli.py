@@ -44,7 +44,12 @@ def test_run_paper_case_writes_the_run_folder(tmp_path):
 def test_run_shows_progress_per_iteration_when_forced(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3", "--progress"])
     assert result.exit_code == 0, result.output
-    assert "it  0  relaxation" in result.stderr and "it  0" not in result.stdout
+    steps = [line for line in result.stderr.splitlines() if line.startswith("  ")]
+    assert any(line.startswith("  relaxation MILP 1: ") for line in steps)
+    assert any(line.startswith("  bound ") for line in steps)
+    assert not any(line in result.stdout for line in steps)
+    log = (tmp_path / "run.log").read_text()
+    assert all(line in log for line in steps)
 
 
 @pytest.mark.slow

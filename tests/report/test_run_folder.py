@@ -176,6 +176,31 @@ def test_a_kill_while_writing_leaves_the_old_folder_or_the_new_one_whole(tmp_pat
     assert not list(tmp_path.glob(".run.*.partial"))
 
 
+@pytest.mark.slow
+def test_a_killed_run_leaves_its_progress_beside_the_folder(tmp_path):
+    """The progress goes to OUT.log as it happens; on success it moves into the folder."""
+    out = tmp_path / "run"
+    live = tmp_path / "run.log"
+    run = subprocess.Popen(
+        [sys.executable, "-m", "sdc_cvx", "run", "--n", "6", "--quiet", "--out", str(out)],
+        cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    )  # fmt: skip
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and run.poll() is None:
+        if live.exists() and "relaxation MILP 1:" in live.read_text():
+            break
+        time.sleep(0.1)
+    run.send_signal(signal.SIGKILL)
+    run.wait()
+    text = live.read_text()
+    assert "Choosing 6 of 11 debris from paper Table 5" in text
+    assert "certified search: 11 debris" in text and "relaxation MILP 1:" in text
+    assert not out.exists()
+    # a run that ends writes run.log into its folder and leaves nothing beside it
+    assert run_cli(out).wait(timeout=120) == 0
+    assert "certified search" in (out / "run.log").read_text() and not live.exists()
+
+
 def test_write_run_refuses_before_writing(solution, tmp_path):
     (tmp_path / "keep.txt").write_text("x")
     with pytest.raises(FileExistsError):
