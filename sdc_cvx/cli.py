@@ -463,8 +463,9 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
             else "seeding: re-optimising cheap paths, then building the first MILP"
         )
         try:
-            solution = solve(catalog, mission, solver=solver, progress=steps.iteration,
-                             log=steps.search_step)
+            solution = solve(
+                catalog, mission, solver=solver, progress=steps.iteration, log=steps.search_step
+            )
         except MissionInfeasible as err:
             steps.discard_live_log()  # a proven answer: the message says it all
             fail(f"infeasible mission: {err}", exit_code(err))

@@ -27,10 +27,10 @@ from ..inputs.catalog import Catalog
 from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
 from ..network.edges import drift_radius_bounds, node_orbits
-from ..physics.plan import PlanEvaluation, evaluate_plan
 from ..solution import IterationRecord, RunStatus, Solution
 from . import sequential
 from .certified import CertifiedNodes, CertifiedResult, certify
+from .fixed_path import schedule_plan
 from .sequential import INJECTION_ID, MissionNodes, SequentialSettings, make_legs
 
 
@@ -159,18 +159,8 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
               solver: SolverOptions, orbits, records, wall) -> Solution:  # fmt: skip
     path = list(result.path)
     schedule = result.schedule
-    plan = evaluate_plan(orbits, path, schedule.a_drift, schedule.inc_drift,
-                         deorbit_days=nodes.deorbit_days, j2=mission.j2)  # fmt: skip
-    notes = []
-    if not (abs(plan.end_day - schedule.end_day) < 1e-6 and plan.end_day <= mission.tmax_days
-            + 1e-6):  # fmt: skip
-        # a zero-length leg (RAANs crossing) can round to a full cycle in Eq. 10's wrap:
-        # report the schedule's own dates, computed by the same physics
-        notes.append("legs reported with the schedule's dates (Eq. 10 rounding at a "
-                     "RAAN crossing)")  # fmt: skip
-        plan = PlanEvaluation(schedule.departure_days,
-                              schedule.arrival_days - schedule.departure_days,
-                              schedule.arrival_days, schedule.dv_mps, schedule.end_day)  # fmt: skip
+    plan, notes = schedule_plan(orbits, path, schedule, deorbit_days=nodes.deorbit_days,
+                                tmax_days=mission.tmax_days, j2=mission.j2)  # fmt: skip
     notes += result.notes  # the search's own notes last: why it stopped, if it did
     ids = nodes.catalog.ids
     status = RunStatus.OPTIMAL if result.status == "optimal" else RunStatus.FEASIBLE

@@ -397,8 +397,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             search.notes.append(f"time limit ({time_limit_s:g} s) reached")
             break
         start = search.candidates(arcs, 1)
-        search.say(f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
-                   f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)")
+        search.say(
+            f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
+            f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"
+        )
         result = solve_relaxation(
             arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
             solver=_with_limit(solver, min(remaining, step_limit)),

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..physics.leg_bounds import TWO_PI, LegCosts, leg_box_bound, leg_cost_at
 from ..physics.orbits import SECONDS_PER_DAY
+from ..physics.plan import PlanEvaluation, evaluate_plan
 
 INITIAL_CELLS = 24
 MIN_CELL_DAYS = 1e-5
@@ -376,3 +377,34 @@ def _no_schedule(L, lower, rounds, cells, start_clock):
     nan = np.full(L, np.nan)
     return PathSchedule(np.inf, float(lower), nan, nan, nan, nan, np.zeros(L), nan, np.nan,
                         rounds, cells, time.perf_counter() - start_clock)  # fmt: skip
+
+
+def schedule_plan(orbits, path, schedule: PathSchedule, *, deorbit_days, tmax_days: float,
+                  j2: float) -> tuple[PlanEvaluation, list[str]]:  # fmt: skip
+    """A certified schedule flown in the true model (Eq. 10 arrivals), and notes.
+
+    Parameters
+    ----------
+    orbits : NodeOrbits
+    path : sequence of int
+        Node positions.
+    schedule : PathSchedule
+        A feasible schedule of ``path`` (:func:`solve_path`).
+    deorbit_days : ndarray
+        Operations time at every node [days].
+    tmax_days, j2 : float
+
+    Returns
+    -------
+    PlanEvaluation, list of str
+        The plan replayed from the schedule's drift orbits, or the schedule's own dates
+        where a zero-length leg (RAANs crossing) rounds to a full cycle in Eq. 10's wrap
+        (then a note says so).
+    """
+    plan = evaluate_plan(orbits, list(path), schedule.a_drift, schedule.inc_drift,
+                         deorbit_days=deorbit_days, j2=j2)  # fmt: skip
+    if abs(plan.end_day - schedule.end_day) < 1e-6 and plan.end_day <= tmax_days + 1e-6:
+        return plan, []
+    plan = PlanEvaluation(schedule.departure_days, schedule.arrival_days - schedule.departure_days,
+                          schedule.arrival_days, schedule.dv_mps, schedule.end_day)  # fmt: skip
+    return plan, ["legs reported with the schedule's dates (Eq. 10 rounding at a RAAN crossing)"]

@@ -45,11 +45,13 @@ from ..milp.solve import chain_of, solve_with_fallback
 from ..milp.types import SolveReport, SolverOptions, Status
 from ..network.dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
 from ..network.edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
+from ..physics.leg_bounds import LegCosts
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
 from ..physics.plan import PlanEvaluation, evaluate_plan
 from ..physics.transfer import cheapest_transfer
 from ..solution import IterationRecord, Leg, RunStatus, Solution
 from .decisions import Action, Outcome, Phase, decide
+from .fixed_path import PathProblem, schedule_plan, solve_path
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .model import ModelSize, PathModel
 from .reoptimize import reoptimize
@@ -58,6 +60,8 @@ INJECTION_ID = "injection"
 FROZEN_GAP_DEG = 0.1
 MAX_WINDOW_COPIES = 120
 SEED_BISECTION_STEPS = 12  # a seed plan is an estimate: the driver re-optimises its answer
+SCHEDULE_TOL_MPS = 0.01
+"""Certificate of the final path's schedule [m/s] (:meth:`_Driver.global_schedule`)."""
 
 
 @dataclass(frozen=True)
@@ -751,6 +755,46 @@ class _Driver:
             self.held.best = (path, legs, final)
         return final
 
+    def global_schedule(self, path, final):
+        """The final path's schedule, optimised globally (:func:`solve_path`).
+
+        The re-optimisation (Part IV-D) is local: on the same path it can stop tens of
+        m/s above the best schedule.  The path's certified schedule replaces it when it
+        is cheaper; either way a note says what is known of the schedule (not of the path,
+        which only the certified method can prove).
+
+        Returns
+        -------
+        PlanEvaluation, tuple
+            The plan, and the legs' ``(a_drift, inc_drift, side)``.
+        """
+        start = time.perf_counter()
+        g, mission, ops = self.geometry, self.mission, self.nodes.deorbit_days
+        legs_table = LegCosts.build(self.orbits.take(path[:-1]), self.orbits.take(path[1:]),
+                                    g.a_low, g.a_high)  # fmt: skip
+        problem = PathProblem(legs_table, tuple(range(len(path) - 1)),
+                              tuple(float(ops[k]) for k in path), mission.tmax_days,
+                              mission.min_transfer_days, mission.drift_inclination,
+                              mission.j2)  # fmt: skip
+        schedule = solve_path(problem, tol_mps=SCHEDULE_TOL_MPS)
+        local = float(final.evaluation.dv_mps.sum())
+        self.log.timings["global_schedule_s"] = time.perf_counter() - start
+        if not schedule.feasible or schedule.upper_mps >= local - SCHEDULE_TOL_MPS:
+            if schedule.lower_mps >= local - SCHEDULE_TOL_MPS:
+                self.log.notes.append(
+                    f"the path's schedule is its optimum within "
+                    f"{SCHEDULE_TOL_MPS:g} m/s (the path itself is not proven)"
+                )
+            return final.evaluation, (final.a_drift, final.inc_drift, final.side)
+        plan, notes = schedule_plan(self.orbits, path, schedule, deorbit_days=ops,
+                                    tmax_days=mission.tmax_days, j2=mission.j2)  # fmt: skip
+        self.log.notes += notes + [
+            f"the path's schedule optimised globally: {local:.2f} -> "
+            f"{schedule.upper_mps:.2f} m/s of transfers (the local re-optimisation stopped "
+            f"above it; the path itself is not proven)"
+        ]  # fmt: skip
+        return plan, (schedule.a_drift, schedule.inc_drift, schedule.side)
+
     def flip_assumptions(self, path, legs, a_legs, evaluation) -> bool:
         """Resume with another side/inclination for legs where one is clearly cheaper."""
         origins, targets = self.orbits.take(path[:-1]), self.orbits.take(path[1:])
@@ -834,10 +878,10 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     driver = _Driver(nodes, mission, solver, settings, progress)
     path, legs, final, status = driver.run()
     driver.log.timings["iterations_s"] = sum(r.seconds for r in driver.log.history)
+    plan, drift = driver.global_schedule(path, final)
     driver.log.timings["total_s"] = time.perf_counter() - wall
     ids = catalog.ids
-    plan = final.evaluation
-    legs_out = make_legs(ids, path, final.a_drift, final.inc_drift, final.side, plan)
+    legs_out = make_legs(ids, path, *drift, plan)
     size = driver.model.size()
     return Solution(
         path=tuple(ids[k] for k in path),
