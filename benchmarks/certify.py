@@ -1,10 +1,12 @@
 """Certified answers: bound, gap and time per case (issue 13's goals).
 
 Prints, per case: N, n, T_max, the answer, its proven lower bound, the gap, the seconds,
-the relaxation MILPs solved and the date cells at the end; for the reference cases (with
-their independently certified optimum and the ratio to it), the paper case, the paper's
-catalog at other n and T_max, and GTOC9 (N = 123, n = 5).  Each case runs in its own
-process with a time limit (``--time-limit``), so one slow case cannot hold the rest.
+the relaxation MILPs solved, the date cells at the end and the peak memory of the case's
+process; for the reference cases (with their independently certified optimum and the
+ratio to it), the paper case, the paper's catalog at other n and T_max, GTOC9 (N = 123,
+n = 5) and the pykep sample of 499 TLE fragments (481 kept, as ``run`` keeps them).
+Each case runs in its own process with a time limit (``--time-limit``), so one slow case
+cannot hold the rest.
 
     python benchmarks/certify.py                       # every case, 120 s each
     python benchmarks/certify.py --only syn05 paper    # some cases
@@ -46,7 +48,17 @@ def cases():
     gtoc9 = SHARED / "gtoc9" / "debris_data.txt"
     if gtoc9.is_file():
         out.append(("gtoc9-123", ("gtoc9", str(gtoc9)), dict(n=5, tmax_days=365.25), None))
+    tle = SHARED / "pykep_tle" / "tle.txt"
+    if tle.is_file():  # fragment clouds; the candidates `run` keeps (481 of 499)
+        out.append(("tle-fragments", ("tle", str(tle)), dict(n=5, tmax_days=365.25), None))
     return out
+
+
+def peak_mb() -> float:
+    """Peak resident memory of this process [MB] (Linux: ru_maxrss is in kB)."""
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 def run_case(spec, mission_kw, time_limit, queue):
@@ -59,17 +71,20 @@ def run_case(spec, mission_kw, time_limit, queue):
         catalog = Catalog.from_csv(path)
     else:
         from sdc_cvx.inputs.formats import read_catalog
+        from sdc_cvx.study.scenario import Selection
 
-        catalog = read_catalog(path, kind)
+        catalog, _ = Selection().apply(read_catalog(path, kind))  # as `run` selects
     start = time.perf_counter()
     try:
         solution = solve(catalog, Mission(**mission_kw),
                          solver=SolverOptions(time_limit_s=time_limit))  # fmt: skip
     except MissionInfeasible:
-        queue.put(dict(N=len(catalog), status="infeasible", seconds=time.perf_counter() - start))
+        queue.put(dict(N=len(catalog), status="infeasible", seconds=time.perf_counter() - start,
+                       peak_mb=peak_mb()))  # fmt: skip
         return
     queue.put(dict(
-        N=len(catalog), status=str(solution.status), answer=solution.total_dv_mps,
+        N=len(catalog), peak_mb=peak_mb(), status=str(solution.status),
+        answer=solution.total_dv_mps,
         lower=solution.lower_bound_mps, gap_mps=solution.gap_mps, gap_rel=solution.gap_rel,
         seconds=time.perf_counter() - start, milps=solution.model_size.get("milp_solves"),
         cells=solution.model_size.get("date_cells"), path="-".join(solution.path)))  # fmt: skip
@@ -87,7 +102,7 @@ def main(argv=None):
           f"time limit {args.time_limit:g} s per case")  # fmt: skip
     header = (f"{'case':<20} {'N':>4} {'n':>2} {'T_max':>7} {'answer':>9} {'bound':>9} "
               f"{'gap m/s':>8} {'gap %':>6} {'s':>6} {'MILPs':>5} {'cells':>5} "
-              f"{'status':<10} {'/opt':>7}")  # fmt: skip
+              f"{'status':<10} {'/opt':>7} {'MB':>5}")  # fmt: skip
     print(header)
     rows = []
     for name, spec, mission_kw, optimum in cases():
@@ -119,7 +134,8 @@ def main(argv=None):
               f"{num('answer', '9.2f'):>9} {num('lower', '9.2f'):>9} {num('gap_mps', '8.2f'):>8} "
               f"{num('gap_pct', '6.3f'):>6} "
               f"{num('seconds', '6.1f'):>6} {num('milps', '5d'):>5} {num('cells', '5d'):>5} "
-              f"{row['status']:<10} {num('ratio', '7.4f'):>7}", flush=True)  # fmt: skip
+              f"{row['status']:<10} {num('ratio', '7.4f'):>7} {num('peak_mb', '5.0f'):>5}",
+              flush=True)  # fmt: skip
     if args.csv:
         import pandas as pd
 

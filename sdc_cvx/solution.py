@@ -17,7 +17,7 @@ References
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 from enum import StrEnum
 
 import pandas as pd
@@ -178,7 +178,8 @@ class Solution:
 
     def iterations_frame(self) -> pd.DataFrame:
         """Iteration history as a table (the paper's Table 7 and more)."""
-        frame = pd.DataFrame([record.to_dict() for record in self.iterations])
+        columns = [f.name for f in fields(IterationRecord)]  # also when there is no row
+        frame = pd.DataFrame([record.to_dict() for record in self.iterations], columns=columns)
         frame["path"] = frame["path"].map(lambda p: "->".join(p))
         return frame
 
@@ -274,7 +275,11 @@ class Solution:
         """
         count = len(self.iterations)
         if self.method == "certified":
-            return f"certified search, {count} relaxation MILPs ({self.backend})"
+            solves = self.model_size.get("milp_solves", count)
+            return (
+                f"certified search, {solves} relaxation MILP{'' if solves == 1 else 's'} "
+                f"({self.backend})"
+            )
         rejected = sum(1 for record in self.iterations if record.rejected)
         tail = f"{count} MILP iteration{'' if count == 1 else 's'}"
         tail += f", {rejected} rejected" if rejected else ""

@@ -51,12 +51,18 @@ DEFAULT_GAP_REL = 1e-3
 PATH_TOL_MPS = 0.01
 SEED_PATHS = 12
 BEAM_WIDTH = 1000
+FIRST_ARCS = 1.5e6
+"""About the most arcs of the first network (before a plan prunes edges): the initial
+cells per debris are fewer when the edges are many."""
+BOUND_CHUNK = 200_000
+"""Arcs whose box bounds are computed together (memory: the first network of N = 481)"""
 CANDIDATES = 40
 """Beam paths whose cells are refined together before a relaxation MILP is solved."""
 MAX_REFINE_ROUNDS = 30
-MILP_STEP_S = 10.0
+MILP_STEP_S = 60.0
 """First time limit of each relaxation MILP [s], doubled whenever one reaches it: a MILP
-stopped early still proves its dual bound and usually holds a path to refine around."""
+stopped early still proves its dual bound and usually holds a path to refine around.
+Measured: 10 s cost rb08 75 s (two MILPs stopped, then one proved) against 35 s."""
 
 
 @dataclass(frozen=True)
@@ -178,11 +184,14 @@ class _Network:
         tail = np.concatenate(tails) if tails else np.empty(0, dtype=int)
         head = np.concatenate(heads) if heads else np.empty(0, dtype=int)
         edge = np.concatenate(edges) if edges else np.empty(0, dtype=int)
-        j = edge_to[edge]
-        bound = leg_box_bound(legs_table, edge, self.node_lo[tail], self.node_hi[tail],
-                              self.node_lo[head] - nodes.ops_days[j],
-                              self.node_hi[head] - nodes.ops_days[j], rule=nodes.rule,
-                              j2=nodes.j2, t_min=nodes.tmin_days)  # fmt: skip
+        bound = np.empty(len(edge))
+        for part in np.array_split(np.arange(len(edge)), max(1, len(edge) // BOUND_CHUNK)):
+            j = edge_to[edge[part]]  # in parts: the bound's temporaries stay small
+            bound[part] = leg_box_bound(
+                legs_table, edge[part], self.node_lo[tail[part]], self.node_hi[tail[part]],
+                self.node_lo[head[part]] - nodes.ops_days[j],
+                self.node_hi[head[part]] - nodes.ops_days[j], rule=nodes.rule, j2=nodes.j2,
+                t_min=nodes.tmin_days)  # fmt: skip
         finite = np.isfinite(bound)
         self.edge = edge[finite]
         self.arcs = Arcs(tail[finite], head[finite], edge_from[self.edge], edge_to[self.edge],
@@ -248,14 +257,20 @@ class _Search:
         self.edge_from, self.edge_to = ii[usable], jj[usable]
         self.edge_index = {(int(a), int(b)): k for k, (a, b) in
                            enumerate(zip(self.edge_from, self.edge_to, strict=True))}  # fmt: skip
+        say(
+            f"certified search: {n} debris, {len(self.edge_from)} edges, {nodes.legs} legs; "
+            "cost tables of every edge"
+        )
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
                                    a_low, a_high)  # fmt: skip
         self.edge_floor = self.legs.floor(np.arange(len(self.edge_from)))
-        self.parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, initial_cells)
+        # the first network holds every edge: fewer cells when they are many (N = 498:
+        # 247 506 edges, 2 cells each instead of 8 keeps it near 1.5 million arcs)
+        cells = max(2, min(initial_cells, int(np.sqrt(FIRST_ARCS / max(len(self.edge_from), 1)))))
+        self.parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, cells)
         self.upper, self.path, self.schedule = np.inf, (), None
         self.settled: dict[tuple, float] = {}  # path -> its certified lower bound [m/s]
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
-        self.cycles: list[tuple[int, ...]] = []
         self.notes: list[str] = []
 
     def label(self, path) -> str:
@@ -350,7 +365,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     max_iterations : int
         Relaxations solved at most.
     initial_cells, split_pieces : int
-        Date cells per debris at the start, and pieces a used cell is split into.
+        Date cells per debris at the start (fewer when the edges are many, see
+        ``FIRST_ARCS``), and pieces a used cell is split into.
 
     Returns
     -------
@@ -362,8 +378,6 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
                      say=progress or (lambda line: None), initial_cells=initial_cells,
                      names=names, path_tol_rel=gap_rel / 2)  # fmt: skip
-    search.say(f"certified search: {search.n} debris, {len(search.edge_from)} edges, "
-               f"{nodes.legs} legs")  # fmt: skip
     for seed in seeds:
         if len(seed) == nodes.legs + 1:
             search.try_path(seed, "seed")
@@ -404,15 +418,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         result = solve_relaxation(
             arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
             solver=_with_limit(solver, min(remaining, step_limit)),
-            must_visit=nodes.must_visit, cuts=list(search.settled), cycles=search.cycles,
-            solver_gap=gap_rel / 4, start=start[0][2] if start else None)  # fmt: skip
+            must_visit=nodes.must_visit, cuts=list(search.settled),
+            solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
         milp_solves += 1
         search.notes += [m for m in result.report.fallbacks if m not in search.notes]
-        if result.cycles:  # a subtour beside the path: forbid it and solve again
-            search.cycles.extend(result.cycles)
-            if result.lower_mps is not None:
-                search.prove(result.lower_mps)  # a relaxation with subtours still bounds
-            continue
         stopped = result.report.status.value in ("time_limit", "no_solution")
         out_of_time = time.perf_counter() >= deadline
         if stopped and not out_of_time:

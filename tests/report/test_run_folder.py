@@ -206,3 +206,15 @@ def test_write_run_refuses_before_writing(solution, tmp_path):
     with pytest.raises(FileExistsError):
         write_run(tmp_path, solution)
     assert [p.name for p in tmp_path.iterdir()] == ["keep.txt"]
+
+
+def test_a_run_without_a_relaxation_row_still_writes_its_folder(solution, tmp_path):
+    """Every relaxation of a search stopped by its time limit may have been cut short by a
+    cycle: no iteration row, and the run folder is still written (its table is empty)."""
+    from dataclasses import replace
+
+    bare = replace(solution, iterations=())
+    write_run(tmp_path / "run", bare, formats=())
+    table = pd.read_csv(tmp_path / "run" / "iterations.csv")
+    assert table.empty and {"iteration", "path", "dv_true_mps"} <= set(table.columns)
+    assert json.loads((tmp_path / "run" / "solution.json").read_text())["iterations"] == []
