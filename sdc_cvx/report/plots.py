@@ -528,14 +528,20 @@ def _plot_certified_search(solution: Solution) -> Figure:
                    gid="lower-bound")  # fmt: skip
         ax.axhspan(solution.lower_bound_mps, solution.total_dv_mps, color=_LIMIT_COLOR,
                    alpha=0.08, gid="gap")  # fmt: skip
-    finite = [v for v in bound + plan if np.isfinite(v)]
+    proven = [] if solution.lower_bound_mps is None else [solution.lower_bound_mps]
+    finite = [v for v in bound + plan + proven if np.isfinite(v)]
     if finite:  # a relaxation far below the plan must not flatten the picture
         top = max(finite + [solution.total_dv_mps])
         low = max(min(finite), solution.total_dv_mps - 3 * (top - min(plan or [top])) - 50.0)
+        low = min([low, *proven])  # the proven bound stays in the picture
         ax.set_ylim(low - 0.02 * (top - low) - 1e-3, top + 0.05 * (top - low) + 1e-3)
     from matplotlib.ticker import MaxNLocator
 
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    if steps:  # one relaxation is a point, not a span of -0.05..0.05
+        ax.set_xlim(min(steps) - 0.5, max(steps) + 0.5)
+        if len(steps) <= 12:
+            ax.set_xticks(steps)
     ax.set_xlabel("relaxation MILP", fontsize=_LABEL_SIZE)
     ax.set_ylabel("\u0394V [m/s]", fontsize=_LABEL_SIZE)
     ax.set_title(f"Certified search: {solution.quality()}", fontsize=_LABEL_SIZE)
