@@ -418,7 +418,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
 
     # a plan, but the run did not settle: say so (a new solved status needs no warning)
     unsettled = {RunStatus.CONVERGED_UNCONFIRMED, RunStatus.ITERATION_LIMIT, RunStatus.TIME_LIMIT,
-                 RunStatus.FEASIBLE}  # fmt: skip
+                 RunStatus.FEASIBLE, RunStatus.STALLED}  # fmt: skip
 
     scenario = build_scenario(
         scenario_file, catalog_path=catalog_path, catalog_format=catalog_format,

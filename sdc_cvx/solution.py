@@ -41,6 +41,7 @@ class RunStatus(StrEnum):
     CONVERGED_UNCONFIRMED = "converged_unconfirmed"  # kept changing after max_confirmations
     ITERATION_LIMIT = "iteration_limit"
     TIME_LIMIT = "time_limit"  # a MILP stopped at its time limit without a solution
+    STALLED = "stalled"  # the next MILP would repeat an earlier one: nothing left to change
 
     @property
     def is_solved(self) -> bool:
@@ -56,6 +57,7 @@ _SOLVED = frozenset(
         RunStatus.CONVERGED_UNCONFIRMED,
         RunStatus.ITERATION_LIMIT,
         RunStatus.TIME_LIMIT,
+        RunStatus.STALLED,
     }
 )
 
@@ -121,8 +123,10 @@ class Solution:
     paper's method proves no bound (``lower_bound_mps`` is None); its
     ``status``: ``converged`` (the path survived a MILP
     around its re-optimised point), ``converged_unconfirmed`` (it kept changing after
-    ``max_confirmations``), ``iteration_limit``, or ``time_limit`` (a MILP stopped at its
-    time limit without a solution; the cheapest plan held is returned, see ``notes``).
+    ``max_confirmations``), ``iteration_limit``, ``time_limit`` (a MILP stopped at its
+    time limit without a solution; the cheapest plan held is returned, see ``notes``), or
+    ``stalled`` (the next MILP would have repeated an earlier one, same coefficients and
+    intervals: the cheapest plan held is returned).
     """
 
     path: tuple[str, ...]

@@ -14,6 +14,7 @@ from sdc_cvx.solution import RunStatus
         (RunStatus.CONVERGED_UNCONFIRMED, "converged_unconfirmed"),
         (RunStatus.ITERATION_LIMIT, "iteration_limit"),
         (RunStatus.TIME_LIMIT, "time_limit"),
+        (RunStatus.STALLED, "stalled"),
     ],
 )
 def test_a_status_is_its_string(status, text):

@@ -206,3 +206,18 @@ def test_the_paper_method_flies_its_path_on_the_paths_best_schedule():
     assert sol.total_dv_mps <= best.dv + 0.01  # the brute force's plan flies: never beaten
     assert sol.total_dv_mps >= best.dv - 0.5  # by more than its grid error
     assert any("optimised globally" in note for note in sol.notes)
+
+
+def test_steps_that_change_nothing_end_the_run_as_stalled():
+    """A catalog where the paper's driver used to repeat one solution to its 40-iteration
+    limit (issue 13): the run ends after ``max_repeats`` repeats and says why."""
+    from .test_enumeration import CASES
+
+    case = next(case for case in CASES if case.name == "sso4-n4-365d")
+    sol = solve(case.catalog(), case.mission())
+    settings = SequentialSettings()
+    assert sol.status == "stalled"
+    assert len(sol.iterations) < settings.max_iterations
+    last = sol.iterations[-(settings.max_repeats + 1) :]
+    assert len({(r.path, round(r.dv_true_mps, 6)) for r in last}) == 1  # repeated solution
+    assert any("changed nothing" in note for note in sol.notes)
