@@ -720,7 +720,12 @@ class _Driver:
                 kept["i"], kept["j"], cost, legs_count, first=self.nodes.first,
                 must_visit=self.nodes.must_visit, width=max(200, count),
             )  # fmt: skip
-            for _, path, legs in ranked[:count]:
+            distinct = {}  # the ranking lists date-window copies of a route: count routes
+            for _, path, legs in ranked:
+                distinct.setdefault(path, legs)
+                if len(distinct) == count:
+                    break
+            for path, legs in distinct.items():
                 candidates.setdefault(path, legs)
         a_ref = kept["drift_a_km"].to_numpy(dtype=float) * 1e3
         # a quick estimate of every candidate, then the full re-optimisation of the best
