@@ -13,7 +13,10 @@ transfer model of Part III):
    a certified lower bound of that path alone, after which a no-good row removes it
    from the relaxation;
 4. the cells the relaxation's path used are halved and arcs that cannot be on a plan
-   better than the incumbent are dropped (walk bounds over the network);
+   better than the incumbent are dropped (walk bounds over the network); before each
+   MILP, the cells of the paths a beam search finds under the plan (more than the gap
+   below it) are halved too, and the best of them certified, until it finds none: the
+   MILP is then a certificate more than a guide;
 5. until the best plan is within the requested gap of the lower bound
    ``min(relaxation, lower bounds of the removed paths)``, or a limit stops the search,
    which then reports the plan with its gap.
@@ -55,10 +58,11 @@ FIRST_ARCS = 1.5e6
 """About the most arcs of the first network (before a plan prunes edges): the initial
 cells per debris are fewer when the edges are many."""
 BOUND_CHUNK = 200_000
-"""Arcs whose box bounds are computed together (memory: the first network of N = 481)"""
+"""Arcs whose box bounds are computed together (memory: the first network of N = 481)."""
 CANDIDATES = 40
 """Beam paths whose cells are refined together before a relaxation MILP is solved."""
 MAX_REFINE_ROUNDS = 30
+"""Refinement rounds before a MILP at most (each certifies one path and splits cells)."""
 MILP_STEP_S = 60.0
 """First time limit of each relaxation MILP [s], doubled whenever one reaches it: a MILP
 stopped early still proves its dual bound and usually holds a path to refine around.
@@ -264,13 +268,14 @@ class _Search:
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
                                    a_low, a_high)  # fmt: skip
         self.edge_floor = self.legs.floor(np.arange(len(self.edge_from)))
-        # the first network holds every edge: fewer cells when they are many (N = 498:
-        # 247 506 edges, 2 cells each instead of 8 keeps it near 1.5 million arcs)
+        # the first network holds every edge: fewer cells when they are many (481 TLE
+        # fragments: 230 880 edges, 2 cells each instead of 8 keeps it near 1.4 M arcs)
         cells = max(2, min(initial_cells, int(np.sqrt(FIRST_ARCS / max(len(self.edge_from), 1)))))
         self.parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, cells)
         self.upper, self.path, self.schedule = np.inf, (), None
         self.settled: dict[tuple, float] = {}  # path -> its certified lower bound [m/s]
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
+        self.completion = None  # per node, cheapest walk of k legs from it (network())
         self.notes: list[str] = []
 
     def label(self, path) -> str:
@@ -500,6 +505,9 @@ def _beam(
     completion=None,
 ) -> list[tuple[float, tuple, tuple]]:
     """Cheapest simple paths under the arc bounds, leg by leg (a beam search).
+
+    Partial paths are ranked by their cost plus ``completion[k][node]``, the cheapest walk
+    of the k legs left from their last node (A*-like; without it, by cost so far).
 
     Returns up to ``count`` distinct debris paths not in ``exclude`` that visit
     ``must_visit``, as ``(cost, debris path, rows of arcs)``, cheapest first.
