@@ -205,6 +205,19 @@ class Mission:
                 if not 0 <= inc <= 180:
                     yield f"injection inc_deg must be in [0, 180], got {inc!r}"
 
+    def requests(self) -> list[str]:
+        """The options that narrow the search, as ``name = value`` text (for messages)."""
+        out = [
+            f"{name} = {', '.join(value) if isinstance(value, tuple) else value}"
+            for name, value in (("must_include", self.must_include), ("exclude", self.exclude),
+                                ("first", self.first),
+                                ("min_transfer_days", self.min_transfer_days or None))
+            if value
+        ]  # fmt: skip
+        if self.injection is not None:
+            out.append(f"injection = {list(self.injection)}")
+        return out
+
     def replace(self, **changes) -> Mission:
         """A copy with some fields changed (validated again)."""
         return dataclasses.replace(self, **changes)

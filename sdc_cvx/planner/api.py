@@ -31,7 +31,7 @@ from ..solution import IterationRecord, RunStatus, Solution
 from . import sequential
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import schedule_plan
-from .sequential import INJECTION_ID, MissionNodes, SequentialSettings, make_legs
+from .sequential import MissionNodes, SequentialSettings, make_legs
 
 
 def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
@@ -107,15 +107,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
 def _infeasible_message(mission: Mission) -> str:
     """Why no plan exists, with the requests that narrowed the search."""
-    requests = [
-        f"{name} = {', '.join(value) if isinstance(value, tuple) else value}"
-        for name, value in (("must_include", mission.must_include), ("exclude", mission.exclude),
-                            ("first", mission.first),
-                            ("min_transfer_days", mission.min_transfer_days or None))
-        if value
-    ]  # fmt: skip
-    if mission.injection is not None:
-        requests.append(f"injection = {list(mission.injection)}")
+    requests = mission.requests()
     asked = f" with {'; '.join(requests)}" if requests else ""
     relax = ["those requests"] if requests else []
     if mission.tmax_days < MAX_TMAX_DAYS:
@@ -174,16 +166,7 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
         backend="+".join(sorted({r["backend"] for r in result.log})) or solver.backend,
         mission=mission,
         iterations=tuple(records),
-        operations={
-            "scenario": mission.deorbit_by,
-            "start": INJECTION_ID if mission.injection is not None else "first debris",
-            "per_debris_mps": {
-                ids[k]: float(nodes.cost_mps[k])
-                for k in path
-                if k != nodes.first or mission.injection is None
-            },
-            "total_mps": float(nodes.cost_mps[path].sum()),
-        },  # fmt: skip
+        operations=nodes.operations(path, mission),
         catalog=nodes.catalog,
         model_size={
             "milp_solves": result.milp_solves,

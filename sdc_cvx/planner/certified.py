@@ -326,10 +326,10 @@ class _Search:
         return _beam(arcs, self.n, self.nodes, self.start_allowed, exclude=self.settled,
                      count=count, completion=self.completion)  # fmt: skip
 
-    def open_paths(self, arcs, gap_rel: float):
-        """Beam paths (not settled) whose arc bounds could beat the plan by more than the gap."""
+    def open_paths(self, beam, gap_rel: float):
+        """The beam's paths whose arc bounds could beat the plan by more than the gap."""
         target = self.upper - _allowed(self.upper, gap_rel) if np.isfinite(self.upper) else np.inf
-        return [c for c in self.candidates(arcs, CANDIDATES) if c[0] < target]
+        return [c for c in beam if c[0] < target]
 
     def status(self, gap_rel: float) -> str:
         if not np.isfinite(self.upper):
@@ -395,10 +395,12 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     for iteration in range(1, max_iterations + 1):
         started = time.perf_counter()
         net, arcs, walk_lower = search.network()
+        beam = []  # the uncut beam paths of the current arcs, cheapest first
         for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
             if len(arcs) == 0 or time.perf_counter() >= deadline:
                 break
-            open_paths = search.open_paths(arcs, gap_rel)
+            beam = search.candidates(arcs, CANDIDATES)
+            open_paths = search.open_paths(beam, gap_rel)
             if not open_paths:
                 break
             search.try_path(open_paths[0][1], "network")
@@ -408,6 +410,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                        f"{open_paths[0][0]:.2f} m/s) are under the plan's "
                        f"{search.upper:.2f} m/s: {search.parts.count()} cells")  # fmt: skip
             net, arcs, walk_lower = search.network()
+            beam = []
         if len(arcs) == 0 or not np.isfinite(walk_lower):
             search.prove(np.inf)  # no walk of L legs at all, or none below the plan held
             break
@@ -415,7 +418,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         if remaining <= 0:
             search.notes.append(f"time limit ({time_limit_s:g} s) reached")
             break
-        start = search.candidates(arcs, 1)
+        start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
         search.say(
             f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
             f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"

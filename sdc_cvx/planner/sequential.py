@@ -191,6 +191,18 @@ class MissionNodes:
             excluded=tuple(index[k] for k in mission.exclude),
         )
 
+    def operations(self, path, mission: Mission) -> dict:
+        """``Solution.operations`` of a path: who deorbits, where it starts, the cost at
+        each debris [m/s] (the injection orbit has none) and their total."""
+        ids = self.catalog.ids
+        return {
+            "scenario": mission.deorbit_by,
+            "start": INJECTION_ID if mission.injection is not None else "first debris",
+            "per_debris_mps": {ids[k]: float(self.cost_mps[k]) for k in path
+                               if k != self.first or mission.injection is None},
+            "total_mps": float(self.cost_mps[list(path)].sum()),
+        }  # fmt: skip
+
 
 def frozen_gaps(catalog: Catalog, mission: Mission) -> bool:
     """True if no RAAN gap moves by more than ``FROZEN_GAP_DEG`` over the mission."""
@@ -924,16 +936,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         initial_legs=driver.log.initial_legs or (),
         catalog=catalog,
         total_dv_mps=float(plan.dv_mps.sum() + nodes.cost_mps[path].sum()),
-        operations={
-            "scenario": mission.deorbit_by,
-            "start": INJECTION_ID if mission.injection is not None else "first debris",
-            "per_debris_mps": {
-                ids[k]: float(nodes.cost_mps[k])
-                for k in path
-                if k != nodes.first or mission.injection is None
-            },
-            "total_mps": float(nodes.cost_mps[path].sum()),
-        },  # fmt: skip
+        operations=nodes.operations(path, mission),
         total_duration_days=plan.end_day,
         status=status,
         backend="+".join(sorted(driver.log.backends_used)) or solver.backend,
@@ -974,18 +977,7 @@ def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation) -> tupl
 
 
 def _relax_message(mission: Mission, edges_summary: str) -> str:
-    requests = [
-        f"{name} = {', '.join(value) if isinstance(value, tuple) else value}"
-        for name, value in (
-            ("must_include", mission.must_include),
-            ("exclude", mission.exclude),
-            ("first", mission.first),
-            ("min_transfer_days", mission.min_transfer_days or None),
-        )  # fmt: skip
-        if value
-    ]
-    if mission.injection is not None:
-        requests.append(f"injection = {list(mission.injection)}")
+    requests = mission.requests()
     asked = f" with {'; '.join(requests)}" if requests else ""
     return (
         f"no path of n = {mission.n} debris ends within T_max = {mission.tmax_days:g} days"
