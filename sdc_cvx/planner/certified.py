@@ -13,7 +13,8 @@ transfer model of Part III):
    a certified lower bound of that path alone, after which a no-good row removes it
    from the relaxation;
 4. the cells the relaxation's path used are halved and arcs that cannot be on a plan
-   better than the incumbent are dropped (walk bounds over the network); before each
+   better than the incumbent are dropped (the cheapest walk, then the cheapest path
+   through each arc: :mod:`~sdc_cvx.network.path_bounds`); before each
    MILP, the cells of the paths a beam search finds under the plan (more than the gap
    below it) are halved too, and the best of them certified, until it finds none: the
    MILP is then a certificate more than a guide;
@@ -45,6 +46,7 @@ import numpy as np
 
 from ..milp.types import SolverOptions
 from ..network.dominance import path_cost_floor
+from ..network.path_bounds import NetworkArcs, elementary_bounds, walk_bounds
 from ..physics.leg_bounds import LegCosts, leg_box_bound
 from .fixed_path import PathProblem, PathSchedule, solve_path
 from .relaxation import Arcs, solve_relaxation
@@ -202,41 +204,27 @@ class _Network:
                          bound[finite] + nodes.cost_mps[edge_to[self.edge]])  # fmt: skip
 
     def pruned(self, nodes: CertifiedNodes, start_allowed, upper: float):
-        """Arcs that can lie on a plan within ``upper``, and the walk bound [m/s].
+        """Arcs that can lie on a plan within ``upper``, and the bound they prove [m/s].
 
         Leg 0 leaves a start node (its operations cost added to the arc), later legs
-        leave cells.  ``F_k`` (cheapest walk of k legs to a node) and ``B_k`` (cheapest
-        walk of k legs from it) bound every path through arc a as leg k by
-        ``F_k + c_a + B_{L-1-k}``; arcs above ``upper`` as every leg leave.
+        leave cells.  An arc leaves when the cheapest walk of L legs through it exceeds
+        ``upper``, then when the cheapest path does
+        (:mod:`~sdc_cvx.network.path_bounds`); the bound is the cheapest path of the
+        network (the cheapest walk when the paths are too many to label).
         """
         a = self.arcs
-        L = nodes.legs
         from_start = a.tail < self.n_debris
-        cost0 = a.cost + nodes.cost_mps[a.debris_from]
-        forward = [np.full(self.n_nodes, np.inf)]
-        forward[0][: self.n_debris] = np.where(start_allowed, 0.0, np.inf)
-        backward = [np.zeros(self.n_nodes)]
-        for k in range(L):
-            f = np.full(self.n_nodes, np.inf)
-            leg_ok = from_start if k == 0 else ~from_start
-            cost = cost0 if k == 0 else a.cost
-            np.minimum.at(f, a.head[leg_ok], forward[-1][a.tail[leg_ok]] + cost[leg_ok])
-            forward.append(f)
-            b = np.full(self.n_nodes, np.inf)
-            inner = ~from_start
-            np.minimum.at(b, a.tail[inner], a.cost[inner] + backward[-1][a.head[inner]])
-            backward.append(b)
-        best = np.full(len(a), np.inf)
-        for k in range(L):
-            leg_ok = from_start if k == 0 else ~from_start
-            cost = cost0 if k == 0 else a.cost
-            through = forward[k][a.tail] + cost + backward[L - 1 - k][a.head]
-            best = np.minimum(best, np.where(leg_ok, through, np.inf))
-        keep = np.isfinite(best) & (best <= upper + 1e-9)  # inf: on no walk (a barred start)
-        self.completion = backward
-        priced = Arcs(a.tail, a.head, a.debris_from, a.debris_to, np.where(from_start, cost0,
-                                                                           a.cost))  # fmt: skip
-        return priced.take(keep), float(np.min(forward[L]))
+        cost = np.where(from_start, a.cost + nodes.cost_mps[a.debris_from], a.cost)
+        priced = Arcs(a.tail, a.head, a.debris_from, a.debris_to, cost)
+        network = NetworkArcs(priced.tail, priced.head, priced.debris_from, priced.debris_to,
+                              priced.cost, self.n_nodes, np.asarray(start_allowed))  # fmt: skip
+        walks = walk_bounds(network, nodes.legs)
+        self.completion = walks[1]
+        through, cheapest = elementary_bounds(network, nodes.legs, self.node_debris, upper, walks)
+        if through is None:
+            through = walks[2]
+        keep = np.isfinite(through) & (through <= upper + 1e-9)  # inf: on no path
+        return priced.take(keep), cheapest
 
 
 class _Search:

@@ -1,0 +1,123 @@
+"""Walk and path bounds of a time-expanded network against every path and walk enumerated."""
+
+import itertools
+
+import numpy as np
+import pytest
+
+from sdc_cvx.network import path_bounds
+from sdc_cvx.network.path_bounds import NetworkArcs, elementary_bounds, walk_bounds
+
+
+def random_network(seed: int, n_debris: int = 5, cells: int = 2, density: float = 0.6):
+    """Start nodes 0..n-1, then ``cells`` date cells per debris; arcs between debris."""
+    rng = np.random.default_rng(seed)
+    node_debris = np.r_[np.arange(n_debris), np.repeat(np.arange(n_debris), cells)]
+    tails, heads = [], []
+    for tail, head in itertools.product(range(len(node_debris)), range(n_debris, len(node_debris))):
+        if node_debris[tail] != node_debris[head] and rng.random() < density:
+            tails.append(tail)
+            heads.append(head)
+    tail, head = np.array(tails), np.array(heads)
+    start_allowed = rng.random(n_debris) < 0.8
+    start_allowed[0] = True
+    cost = rng.uniform(1.0, 10.0, len(tail))
+    arcs = NetworkArcs(tail, head, node_debris[tail], node_debris[head], cost,
+                       len(node_debris), start_allowed)  # fmt: skip
+    return arcs, node_debris
+
+
+def enumerate_through(arcs: NetworkArcs, legs: int, node_debris, elementary: bool):
+    """The cheapest sequence of ``legs`` arcs (a walk, or a path) through each arc."""
+    n_starts = len(arcs.start_allowed)
+    leaving = {}
+    for a in range(len(arcs.cost)):
+        leaving.setdefault(int(arcs.tail[a]), []).append(a)
+    best = np.full(len(arcs.cost), np.inf)
+    cheapest = np.inf
+
+    def grow(sequence, visited, cost):
+        nonlocal cheapest
+        if len(sequence) == legs:
+            cheapest = min(cheapest, cost)
+            best[list(sequence)] = np.minimum(best[list(sequence)], cost)
+            return
+        node = int(arcs.head[sequence[-1]]) if sequence else None
+        for a in leaving.get(node, ()) if sequence else ():
+            debris = int(node_debris[arcs.head[a]])
+            if elementary and debris in visited:
+                continue
+            grow(sequence + (a,), visited | {debris}, cost + arcs.cost[a])
+
+    for start in np.flatnonzero(arcs.start_allowed):
+        for a in leaving.get(int(start), ()):
+            grow((a,), {int(start), int(node_debris[arcs.head[a]])}, arcs.cost[a])
+    assert np.all(arcs.tail[arcs.tail < n_starts] < n_starts)
+    return best, cheapest
+
+
+@pytest.mark.parametrize("seed", range(12))
+@pytest.mark.parametrize("legs", [1, 2, 3, 4])
+def test_walk_bounds_are_the_cheapest_walks(seed, legs):
+    arcs, node_debris = random_network(seed)
+    exact, _ = enumerate_through(arcs, legs, node_debris, elementary=False)
+    _, _, through = walk_bounds(arcs, legs)
+    np.testing.assert_allclose(through, exact)
+
+
+@pytest.mark.parametrize("seed", range(12))
+@pytest.mark.parametrize("legs", [2, 3, 4])
+def test_path_bounds_are_the_cheapest_paths_when_every_label_is_paired(seed, legs):
+    """With every label paired the bound is exact on the arcs of paths within ``upper``
+    (5 debris: at most C(4, 2) = 6 labels of one length end on a node)."""
+    assert path_bounds.TOP_LABELS >= 6
+    arcs, node_debris = random_network(seed)
+    exact, cheapest = enumerate_through(arcs, legs, node_debris, elementary=True)
+    walk, _ = enumerate_through(arcs, legs, node_debris, elementary=False)
+    assert np.any(exact > walk)  # the networks have walks that are not paths
+    upper = float(np.quantile(exact[np.isfinite(exact)], 0.5))
+    through, best = elementary_bounds(arcs, legs, node_debris, upper)
+    within = exact <= upper
+    np.testing.assert_allclose(through[within], exact[within])
+    assert np.all(through[~within] > upper)
+    assert best == pytest.approx(cheapest)
+    through, best = elementary_bounds(arcs, legs, node_debris, np.inf)
+    np.testing.assert_allclose(through, exact)
+
+
+@pytest.mark.parametrize("seed", range(12))
+@pytest.mark.parametrize("top", [1, 2])
+def test_path_bounds_stay_below_every_path_when_few_labels_are_paired(seed, top, monkeypatch):
+    """Pairs beyond the top labels are bounded, never ignored: no arc of a path within
+    ``upper`` is lost, and no bound exceeds the cheapest path through its arc."""
+    monkeypatch.setattr(path_bounds, "TOP_LABELS", top)
+    arcs, node_debris = random_network(seed, n_debris=6, cells=3)
+    legs = 4
+    exact, cheapest = enumerate_through(arcs, legs, node_debris, elementary=True)
+    _, _, walk = walk_bounds(arcs, legs)
+    upper = float(np.quantile(exact[np.isfinite(exact)], 0.3))
+    through, best = elementary_bounds(arcs, legs, node_debris, upper)
+    within = exact <= upper
+    assert np.all(through[within] <= exact[within] + 1e-9)
+    assert np.all(through[within] >= walk[within] - 1e-9)
+    assert best == pytest.approx(cheapest)
+
+
+def test_path_bounds_give_up_beyond_the_label_budget():
+    arcs, node_debris = random_network(0, n_debris=6, cells=3)
+    forward, _, _ = walk_bounds(arcs, 4)
+    through, best = elementary_bounds(arcs, 4, node_debris, np.inf, max_labels=3)
+    assert through is None
+    assert best == pytest.approx(np.min(forward[4]))
+
+
+def test_no_path_from_a_barred_start():
+    arcs, node_debris = random_network(3)
+    only = np.zeros_like(arcs.start_allowed)
+    only[1] = True
+    barred = NetworkArcs(arcs.tail, arcs.head, arcs.debris_from, arcs.debris_to, arcs.cost,
+                         arcs.n_nodes, only)  # fmt: skip
+    through, _ = elementary_bounds(barred, 3, node_debris, np.inf)
+    first = arcs.tail < len(only)
+    assert np.all(np.isinf(through[first & (arcs.tail != 1)]))
+    assert np.any(np.isfinite(through[first & (arcs.tail == 1)]))
