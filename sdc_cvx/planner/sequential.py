@@ -451,12 +451,32 @@ class _Driver:
         return self.floor <= cost + 1e-9 * abs(cost) + 1e-6
 
     def bound_by(self, path, legs, a_drift, evaluation: PlanEvaluation):
-        """Keep the cheapest plan seen that meets T_max and T_min in the true model."""
+        """Keep the cheapest plan seen that meets T_max and T_min in the true model.
+
+        The plan is held in the copies whose date windows contain its departures
+        (:meth:`copies_holding`), so that the MILP restricted to them admits it.
+        """
         ends_in_time = self.fits(evaluation)
         cost = self.total(path, evaluation)
         if ends_in_time and cost < self.held.upper[0]:
+            legs = self.copies_holding(legs, evaluation.departure_day)
             self.held.upper = (cost, (path, legs, np.asarray(a_drift, dtype=float)))
         return ends_in_time
+
+    def copies_holding(self, legs, departure_day) -> list[int]:
+        """For each leg, the copy of its edge whose date window holds its departure [days].
+
+        A copy is taken only with the leg's own drift side and inclination (the plan
+        flew those); a leg with no such copy keeps its own.
+        """
+        g, (lo, hi) = self.geometry, self.trust.windows
+        edge = self.kept["i"].to_numpy() * len(self.catalog) + self.kept["j"].to_numpy()
+        out = []
+        for copy, day in zip(legs, departure_day, strict=True):
+            holds = (edge == edge[copy]) & (lo <= day + 1e-9) & (day <= hi + 1e-9)
+            holds &= (g.side == g.side[copy]) & np.isclose(g.inc_drift, g.inc_drift[copy])
+            out.append(int(copy) if holds[copy] or not holds.any() else int(np.argmax(holds)))
+        return out
 
     def fits(self, evaluation: PlanEvaluation) -> bool:
         """The plan ends by T_max and no transfer is shorter than T_min (true model)."""
@@ -710,6 +730,9 @@ class _Driver:
         within that share (the same pre-optimisation at the leg's own date).  On GTOC9
         the second ranks first the path that sequential linearisation alone reached
         only by chance (815th by the first); on small catalogs either may be the one.
+        Every listed path that ends in time, not only the held one, has its copies
+        linearised where it flies them (:meth:`refer_to`; issue 13: a rival path kept the
+        pre-optimisation's references and was priced too high).
         """
         count = self.settings.seed_paths
         if count <= 0 or frozen_gaps(self.catalog, self.mission):
@@ -747,13 +770,18 @@ class _Driver:
             final = self.true_optimum(path, legs, a_ref[legs], polish=False,
                                       bisection_steps=SEED_BISECTION_STEPS)  # fmt: skip
             if self.bound_by(path, legs, final.a_drift, final.evaluation):
-                fits.append((self.total(path, final.evaluation), path, legs))
+                fits.append((self.total(path, final.evaluation), path, legs, final))
+        # every seeded path's copies are linearised where that path flies them, not only
+        # the held one's: a rival keeps wide secants but not a stale reference (costliest
+        # first, so that a copy two paths share takes the cheaper one's point)
+        for _cost, _path, legs, final in sorted(fits, key=lambda fit: -fit[0]):
+            self.refer_to(legs, final)
         held = None
         if fits:
-            _, path, legs = min(fits)
+            _, path, legs, _ = min(fits, key=lambda fit: fit[0])
             final = self.true_optimum(path, legs, a_ref[legs])
             if self.bound_by(path, legs, final.a_drift, final.evaluation):
-                held = (legs, final)
+                held = (self.copies_holding(legs, final.evaluation.departure_day), final)
         self.log.timings["seed_s"] = time.perf_counter() - start
         if held is not None:
             # the held plan's copies take its sides, inclinations, radii and dates: the
@@ -767,6 +795,16 @@ class _Driver:
                 f"{len(candidates)} paths re-optimised); {int((~self.undominated()).sum())} of "
                 f"{len(kept)} edge copies dominated"
             )
+
+    def refer_to(self, legs, final):
+        """Linearise the copies holding a plan's dates around its radii and dates, where
+        they fly its drift sides and inclinations."""
+        copies = self.copies_holding(legs, final.evaluation.departure_day)
+        g = self.geometry
+        same = (g.side[copies] == final.side) & np.isclose(g.inc_drift[copies], final.inc_drift)
+        chosen = np.flatnonzero(same)
+        self.set_references(np.asarray(copies)[chosen], final.a_drift[chosen],
+                            final.evaluation.departure_day[chosen])  # fmt: skip
 
     def true_optimum(self, path, legs, a_start, **options):
         """:func:`~sdc_cvx.planner.reoptimize.reoptimize` of ``path`` from the copies' choices."""

@@ -213,7 +213,7 @@ def test_steps_that_change_nothing_end_the_run_as_stalled():
     limit (issue 13): the run ends after ``max_repeats`` repeats and says why."""
     from .test_enumeration import CASES
 
-    case = next(case for case in CASES if case.name == "sso4-n4-365d")
+    case = next(case for case in CASES if case.name == "spread4-n3-120d")
     sol = solve(case.catalog(), case.mission())
     settings = SequentialSettings()
     assert sol.status == "stalled"
@@ -221,3 +221,32 @@ def test_steps_that_change_nothing_end_the_run_as_stalled():
     last = sol.iterations[-(settings.max_repeats + 1) :]
     assert len({(r.path, round(r.dv_true_mps, 6)) for r in last}) == 1  # repeated solution
     assert any("changed nothing" in note for note in sol.notes)
+
+
+def test_the_held_plan_sits_in_the_copies_whose_windows_hold_its_dates():
+    """A plan found in one date-window copy of its edges but flown on other dates is held
+    in the copies whose windows contain those dates (issue 13: otherwise the MILP
+    restricted to the held copies cannot admit it, and the warm start fails)."""
+    from sdc_cvx import SolverOptions
+    from sdc_cvx.planner.sequential import MissionNodes, _Driver
+
+    catalog, mission = sso_catalog(6, seed=3), Mission(n=3, tmax_days=300.0)
+    nodes = MissionNodes.of(catalog, mission)
+    driver = _Driver(nodes, mission, SolverOptions(), SequentialSettings(date_windows=3), None)
+    kept, (lo, hi), g = driver.kept, driver.trust.windows, driver.geometry
+    assert kept["window"].nunique() == 3
+    # copies of one edge in window 0 and a later window, flown the same way
+    key = kept.assign(side=g.side, inc=np.round(g.inc_drift, 9))
+    pairs = key.reset_index().merge(key.reset_index(), on=["i", "j", "side", "inc"])
+    pairs = pairs[(pairs["window_x"] == 0) & (pairs["window_y"] > 0)].drop_duplicates(["i", "j"])
+    assert len(pairs) >= 2
+    legs = [int(v) for v in pairs["index_x"][:2]]
+    targets = [int(v) for v in pairs["index_y"][:2]]
+    days = [(lo[t] + hi[t]) / 2 for t in targets]  # outside window 0
+    held = driver.copies_holding(legs, days)
+    for copy, leg, day in zip(held, legs, days, strict=True):
+        assert (kept.at[copy, "i"], kept.at[copy, "j"]) == (kept.at[leg, "i"], kept.at[leg, "j"])
+        assert lo[copy] <= day <= hi[copy] and not lo[leg] <= day <= hi[leg]
+        assert (g.side[copy], g.inc_drift[copy]) == (g.side[leg], g.inc_drift[leg])
+    assert driver.copies_holding(held, days) == held  # already holding: unchanged
+    assert driver.copies_holding(legs, [-50.0, -50.0]) == legs  # no window holds: its own
