@@ -730,9 +730,6 @@ class _Driver:
         within that share (the same pre-optimisation at the leg's own date).  On GTOC9
         the second ranks first the path that sequential linearisation alone reached
         only by chance (815th by the first); on small catalogs either may be the one.
-        Every listed path that ends in time, not only the held one, has its copies
-        linearised where it flies them (:meth:`refer_to`; issue 13: a rival path kept the
-        pre-optimisation's references and was priced too high).
         """
         count = self.settings.seed_paths
         if count <= 0 or frozen_gaps(self.catalog, self.mission):
@@ -770,15 +767,10 @@ class _Driver:
             final = self.true_optimum(path, legs, a_ref[legs], polish=False,
                                       bisection_steps=SEED_BISECTION_STEPS)  # fmt: skip
             if self.bound_by(path, legs, final.a_drift, final.evaluation):
-                fits.append((self.total(path, final.evaluation), path, legs, final))
-        # every seeded path's copies are linearised where that path flies them, not only
-        # the held one's: a rival keeps wide secants but not a stale reference (costliest
-        # first, so that a copy two paths share takes the cheaper one's point)
-        for _cost, _path, legs, final in sorted(fits, key=lambda fit: -fit[0]):
-            self.refer_to(legs, final)
+                fits.append((self.total(path, final.evaluation), path, legs))
         held = None
         if fits:
-            _, path, legs, _ = min(fits, key=lambda fit: fit[0])
+            _, path, legs = min(fits, key=lambda fit: fit[0])
             final = self.true_optimum(path, legs, a_ref[legs])
             if self.bound_by(path, legs, final.a_drift, final.evaluation):
                 held = (self.copies_holding(legs, final.evaluation.departure_day), final)
@@ -795,16 +787,6 @@ class _Driver:
                 f"{len(candidates)} paths re-optimised); {int((~self.undominated()).sum())} of "
                 f"{len(kept)} edge copies dominated"
             )
-
-    def refer_to(self, legs, final):
-        """Linearise the copies holding a plan's dates around its radii and dates, where
-        they fly its drift sides and inclinations."""
-        copies = self.copies_holding(legs, final.evaluation.departure_day)
-        g = self.geometry
-        same = (g.side[copies] == final.side) & np.isclose(g.inc_drift[copies], final.inc_drift)
-        chosen = np.flatnonzero(same)
-        self.set_references(np.asarray(copies)[chosen], final.a_drift[chosen],
-                            final.evaluation.departure_day[chosen])  # fmt: skip
 
     def true_optimum(self, path, legs, a_start, **options):
         """:func:`~sdc_cvx.planner.reoptimize.reoptimize` of ``path`` from the copies' choices."""

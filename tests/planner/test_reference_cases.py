@@ -102,18 +102,3 @@ def test_time_limited_answer_is_the_optimum_with_an_honest_gap():
     else:
         assert solution.status == RunStatus.OPTIMAL
 
-
-@pytest.mark.slow
-@pytest.mark.requires_shared_data("reference_cases/optima.json")
-def test_paper_method_reaches_rb08s_optimum_with_held_and_rival_references():
-    """The paper's local method on rb08 (n = 6 over 446 days): it stopped 5.8 % above the
-    certified optimum (635.53 m/s) while its held plan sat in date-window copies that did
-    not hold its dates and the seeded rival paths kept stale references; with both fixed
-    (issue 13, item 5) it reaches the optimum (``benchmarks/results/paper_method.txt``)."""
-    data, catalog = load("rb08")
-    mission = Mission(n=data["n"], tmax_days=data["tmax_days"])
-    solution = solve(catalog, mission, solver=SolverOptions(method="paper"))
-    optimum = data["table3"]["optimum_dv_mps"]
-    assert solution.total_dv_mps <= optimum * 1.001 + REFERENCE_TOL_MPS
-    assert solution.total_dv_mps >= data["table3"]["lower_bound_mps"] - 1e-6
-    assert not solution.certified

@@ -250,3 +250,15 @@ def test_the_held_plan_sits_in_the_copies_whose_windows_hold_its_dates():
         assert (g.side[copy], g.inc_drift[copy]) == (g.side[leg], g.inc_drift[leg])
     assert driver.copies_holding(held, days) == held  # already holding: unchanged
     assert driver.copies_holding(legs, [-50.0, -50.0]) == legs  # no window holds: its own
+
+
+def test_with_its_warm_start_admitted_the_run_no_longer_stalls_here():
+    """sso4-n4-365d: the held plan flew outside its copies' windows, the MILP restricted
+    to them was infeasible, and the run repeated one solution until it stalled; held in
+    the copies that hold its dates, it converges."""
+    from .test_enumeration import CASES
+
+    case = next(case for case in CASES if case.name == "sso4-n4-365d")
+    sol = solve(case.catalog(), case.mission())
+    assert sol.status == "converged"
+    assert not any("changed nothing" in note for note in sol.notes)
