@@ -101,4 +101,3 @@ def test_time_limited_answer_is_the_optimum_with_an_honest_gap():
         assert "time limit" in solution.notes[-1]
     else:
         assert solution.status == RunStatus.OPTIMAL
-
