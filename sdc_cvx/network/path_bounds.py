@@ -160,7 +160,8 @@ def elementary_bounds(arcs: NetworkArcs, legs: int, node_debris, upper: float,
     through : ndarray or None
         A lower bound of every path of L arcs through each arc that costs at most
         ``upper``, shape (m,) (``inf``: no such path); None when the labels exceeded
-        ``max_labels``.
+        ``max_labels`` or ``upper`` is infinite (measured on GTOC9's first network:
+        2.3 s to give up).
     cheapest : float
         The cheapest path of L arcs (``inf`` if none within ``upper``; the walk bound
         when the function gave up).
@@ -174,6 +175,8 @@ def elementary_bounds(arcs: NetworkArcs, legs: int, node_debris, upper: float,
     """
     node_debris = np.asarray(node_debris, dtype=np.int64)
     forward_walk, backward_walk, through_walk = walks or walk_bounds(arcs, legs)
+    if not np.isfinite(upper):  # nothing to prune against: every partial path is a label
+        return None, float(np.min(forward_walk[legs]))
     first = arcs.first
     starts = np.flatnonzero(np.isfinite(forward_walk[0]))
     forward = [_Labels(starts, node_debris[starts][:, None], np.zeros(len(starts)))]

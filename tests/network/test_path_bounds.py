@@ -80,9 +80,11 @@ def test_path_bounds_are_the_cheapest_paths_when_every_label_is_paired(seed, leg
     within = exact <= upper
     np.testing.assert_allclose(through[within], exact[within])
     assert np.all(through[~within] > upper)
+    assert best == pytest.approx(np.min(exact))
     assert best == pytest.approx(cheapest)
-    through, best = elementary_bounds(arcs, legs, node_debris, np.inf)
-    np.testing.assert_allclose(through, exact)
+    finite = np.isfinite(exact)  # every path: exact wherever one passes
+    through, _ = elementary_bounds(arcs, legs, node_debris, float(np.max(exact[finite])))
+    np.testing.assert_allclose(through[finite], exact[finite])
 
 
 @pytest.mark.parametrize("seed", range(12))
@@ -103,10 +105,11 @@ def test_path_bounds_stay_below_every_path_when_few_labels_are_paired(seed, top,
     assert best == pytest.approx(cheapest)
 
 
-def test_path_bounds_give_up_beyond_the_label_budget():
+@pytest.mark.parametrize(("upper", "max_labels"), [(50.0, 3), (np.inf, 10**6)])
+def test_path_bounds_give_up_beyond_the_label_budget_or_without_a_plan(upper, max_labels):
     arcs, node_debris = random_network(0, n_debris=6, cells=3)
     forward, _, _ = walk_bounds(arcs, 4)
-    through, best = elementary_bounds(arcs, 4, node_debris, np.inf, max_labels=3)
+    through, best = elementary_bounds(arcs, 4, node_debris, upper, max_labels=max_labels)
     assert through is None
     assert best == pytest.approx(np.min(forward[4]))
 
@@ -117,7 +120,7 @@ def test_no_path_from_a_barred_start():
     only[1] = True
     barred = NetworkArcs(arcs.tail, arcs.head, arcs.debris_from, arcs.debris_to, arcs.cost,
                          arcs.n_nodes, only)  # fmt: skip
-    through, _ = elementary_bounds(barred, 3, node_debris, np.inf)
+    through, _ = elementary_bounds(barred, 3, node_debris, 1e6)
     first = arcs.tail < len(only)
     assert np.all(np.isinf(through[first & (arcs.tail != 1)]))
     assert np.any(np.isfinite(through[first & (arcs.tail == 1)]))
