@@ -18,8 +18,9 @@ The second is much the stronger on the cases of ``benchmarks/certify.py``: walks
 and forth between two cheap debris, or loop on three, and so keep most arcs; the
 relaxation MILP then spends seconds in branching to tell those walks from paths
 (measured: paper case 1248 arcs, 5 s, against 197 arcs, 0.5 s; rb08 2634 against 162).
-It is exact, and its labels grow with the cheap partial paths: it gives up, and the
-walk bounds stand, beyond a budget of labels.
+It is exact where a node holds at most :data:`TOP_LABELS` labels, a lower bound
+elsewhere; its labels grow with the cheap partial paths, so it gives up, and the walk
+bounds stand, beyond a budget of labels or without a plan to prune against.
 
 References
 ----------
