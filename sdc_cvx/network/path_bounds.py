@@ -176,50 +176,58 @@ def elementary_bounds(arcs: NetworkArcs, legs: int, node_debris, upper: float,
     """
     node_debris = np.asarray(node_debris, dtype=np.int64)
     forward_walk, backward_walk, through_walk = walks or walk_bounds(arcs, legs)
+    gave_up = None, float(np.min(forward_walk[legs]))
     if not np.isfinite(upper):  # nothing to prune against: every partial path is a label
-        return None, float(np.min(forward_walk[legs]))
-    first = arcs.first
+        return gave_up
+    first, n = arcs.first, arcs.n_nodes
+    leaving_start, leaving_cell = _grouped(arcs.tail, first, n), _grouped(arcs.tail, ~first, n)
+    entering_cell = _grouped(arcs.head, ~first, n)
     starts = np.flatnonzero(np.isfinite(forward_walk[0]))
     forward = [_Labels(starts, node_debris[starts][:, None], np.zeros(len(starts)))]
     for k in range(legs):
-        usable = first if k == 0 else ~first
-        grown = _extend(forward[-1], arcs.tail, arcs.head, arcs.debris_to, arcs.cost, usable,
-                        backward_walk[legs - 1 - k], upper, max_labels)  # fmt: skip
+        grown = _extend(forward[-1], leaving_start if k == 0 else leaving_cell, arcs.head,
+                        arcs.debris_to, arcs.cost, backward_walk[legs - 1 - k], upper,
+                        max_labels)  # fmt: skip
         if grown is None:
-            return None, float(np.min(forward_walk[legs]))
+            return gave_up
         forward.append(grown)
     cheapest = float(np.min(forward[legs].cost, initial=np.inf))
     heads = np.unique(arcs.head)
     backward = [_Labels(heads, node_debris[heads][:, None], np.zeros(len(heads)))]
     for r in range(legs - 1):
-        grown = _extend(backward[-1], arcs.head, arcs.tail, arcs.debris_from, arcs.cost, ~first,
+        grown = _extend(backward[-1], entering_cell, arcs.tail, arcs.debris_from, arcs.cost,
                         forward_walk[legs - 1 - r], upper, max_labels)  # fmt: skip
         if grown is None:
-            return None, float(np.min(forward_walk[legs]))
+            return gave_up
         backward.append(grown)
     through = np.full(len(arcs.cost), np.inf)
     for k in range(legs):
         leg = np.flatnonzero((first if k == 0 else ~first) & (through_walk <= upper + 1e-9))
         if len(leg):
             through[leg] = np.minimum(through[leg], _paired(
-                forward[k], backward[legs - 1 - k], arcs, leg, arcs.n_nodes))  # fmt: skip
+                forward[k], backward[legs - 1 - k], arcs, leg, n))  # fmt: skip
     return through, cheapest
 
 
-def _extend(labels: _Labels, source, target, new_debris, cost, usable, rest, upper,
+def _grouped(source, usable, n_nodes: int):
+    """The usable arcs sorted by their ``source`` node, and where each node's run starts."""
+    rows = np.flatnonzero(usable)
+    rows = rows[np.argsort(source[rows], kind="stable")]
+    return rows, np.searchsorted(source[rows], np.arange(n_nodes + 1))
+
+
+def _extend(labels: _Labels, grouped, target, new_debris, cost, rest, upper,
             max_labels) -> _Labels | None:  # fmt: skip
-    """Labels one arc longer: along usable arcs leaving each label's node (``source``)
-    for a debris not visited yet, kept while ``cost + rest[node] <= upper``, one per
-    (node, visited debris), the cheapest."""
-    order = np.flatnonzero(usable)
-    order = order[np.argsort(source[order], kind="stable")]
-    starts = np.searchsorted(source[order], np.arange(len(rest) + 1))
+    """Labels one arc longer: along the arcs leaving each label's node (``grouped``, from
+    :func:`_grouped`) for a debris not visited yet, kept while ``cost + rest[node] <=
+    upper``, one per (node, visited debris), the cheapest."""
+    rows, starts = grouped
     degree = (starts[1:] - starts[:-1])[labels.node]
     if int(degree.sum()) > max_labels * 8:
         return None
     which = np.repeat(np.arange(len(labels)), degree)
     offset = np.arange(len(which)) - np.repeat(np.cumsum(degree) - degree, degree)
-    arc = order[starts[labels.node[which]] + offset]
+    arc = rows[starts[labels.node[which]] + offset]
     debris = new_debris[arc]
     total = labels.cost[which] + cost[arc]
     node = target[arc]

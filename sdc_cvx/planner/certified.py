@@ -294,15 +294,16 @@ class _Search:
             self.say(f"  plan {self.label(path)}: {total:.2f} m/s ({why})")
 
     def network(self):
-        """Arcs that could be on a plan better than the one held, and the walk bound."""
+        """Arcs that could be on a plan better than the one held, and the bound they prove
+        (the network's cheapest path: :meth:`_Network.pruned`)."""
         alive = path_cost_floor(self.edge_from, self.edge_to, self.edge_floor,
                                 self.nodes.cost_mps, self.nodes.legs,
                                 first=self.nodes.first) <= self.upper + 1e-9  # fmt: skip
         net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive)
-        arcs, walk_lower = net.pruned(self.nodes, self.start_allowed, self.upper)
-        self.prove(min(walk_lower, self.upper))
+        arcs, network_lower = net.pruned(self.nodes, self.start_allowed, self.upper)
+        self.prove(min(network_lower, self.upper))
         self.completion = net.completion
-        return net, arcs, walk_lower
+        return net, arcs, network_lower
 
     def prove(self, relaxation_bound: float) -> float:
         """Raise the bound: every plan is on a settled path or above the relaxation's."""
@@ -382,7 +383,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     step_limit, milp_solves = MILP_STEP_S, 0
     for iteration in range(1, max_iterations + 1):
         started = time.perf_counter()
-        net, arcs, walk_lower = search.network()
+        net, arcs, network_lower = search.network()
         beam = []  # the uncut beam paths of the current arcs, cheapest first
         for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
             if len(arcs) == 0 or time.perf_counter() >= deadline:
@@ -397,10 +398,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             search.say(f"  refine the cells of {len(open_paths)} paths whose bounds (from "
                        f"{open_paths[0][0]:.2f} m/s) are under the plan's "
                        f"{search.upper:.2f} m/s: {search.parts.count()} cells")  # fmt: skip
-            net, arcs, walk_lower = search.network()
+            net, arcs, network_lower = search.network()
             beam = []
-        if len(arcs) == 0 or not np.isfinite(walk_lower):
-            search.prove(np.inf)  # no walk of L legs at all, or none below the plan held
+        if len(arcs) == 0 or not np.isfinite(network_lower):
+            search.prove(np.inf)  # no path of L legs at all, or none below the plan held
             break
         remaining = deadline - time.perf_counter()
         if remaining <= 0:

@@ -29,7 +29,6 @@ def random_network(seed: int, n_debris: int = 5, cells: int = 2, density: float 
 
 def enumerate_through(arcs: NetworkArcs, legs: int, node_debris, elementary: bool):
     """The cheapest sequence of ``legs`` arcs (a walk, or a path) through each arc."""
-    n_starts = len(arcs.start_allowed)
     leaving = {}
     for a in range(len(arcs.cost)):
         leaving.setdefault(int(arcs.tail[a]), []).append(a)
@@ -42,8 +41,7 @@ def enumerate_through(arcs: NetworkArcs, legs: int, node_debris, elementary: boo
             cheapest = min(cheapest, cost)
             best[list(sequence)] = np.minimum(best[list(sequence)], cost)
             return
-        node = int(arcs.head[sequence[-1]]) if sequence else None
-        for a in leaving.get(node, ()) if sequence else ():
+        for a in leaving.get(int(arcs.head[sequence[-1]]), ()):
             debris = int(node_debris[arcs.head[a]])
             if elementary and debris in visited:
                 continue
@@ -52,7 +50,6 @@ def enumerate_through(arcs: NetworkArcs, legs: int, node_debris, elementary: boo
     for start in np.flatnonzero(arcs.start_allowed):
         for a in leaving.get(int(start), ()):
             grow((a,), {int(start), int(node_debris[arcs.head[a]])}, arcs.cost[a])
-    assert np.all(arcs.tail[arcs.tail < n_starts] < n_starts)
     return best, cheapest
 
 
