@@ -39,7 +39,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import MAX_REPORTED, CatalogError, CatalogWarning
-from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
+from ..physics.orbits import J2, R_EARTH, SECONDS_PER_DAY, raan_rate
 
 __all__ = [
     "DERIVED_COLUMNS",
@@ -243,6 +243,36 @@ class Catalog:
         ).frame  # fmt: skip
         frame = pd.concat([self.frame, row], ignore_index=True)
         return Catalog(frame, self.start, self.source)
+
+    def advanced(self, days: float, *, j2: float = J2) -> Catalog:
+        """The catalog ``days`` later: each RAAN carried by its own J2 rate (Eq. 7).
+
+        A campaign's mission launched on day ``d`` plans from ``advanced(d)``: its day 0
+        is the catalog's day ``d``, and its RAANs there are those a mission from day 0
+        would meet on day ``d`` (the same rates, for the same ``j2``).
+
+        Parameters
+        ----------
+        days : float
+            [days] after ``start``.
+        j2 : float
+            Zonal coefficient of the rates (the mission's).
+
+        Returns
+        -------
+        Catalog
+            Same rows; ``raan_deg`` at the new date, ``start`` moved by ``days`` (None
+            stays None).
+        """
+        if days == 0:
+            return self
+        frame = self.frame.copy()
+        rate = raan_rate(self.a_m, self.e, self.inc_rad, j2=j2)  # rad/s
+        frame["raan_deg"] = _wrap_deg(
+            frame["raan_deg"].to_numpy() + np.degrees(rate) * SECONDS_PER_DAY * days
+        )
+        start = None if self.start is None else self.start + pd.Timedelta(days=float(days))
+        return Catalog(frame=frame, start=start, source=self.source)
 
     def subset(self, ids: Iterable[str] | str) -> Catalog:
         """Catalog restricted to ``ids``, kept in catalog order (not in the given order).

@@ -30,7 +30,7 @@ from ..network.edges import drift_radius_bounds, node_orbits
 from ..solution import IterationRecord, RunStatus, Solution
 from . import sequential
 from .certified import CertifiedNodes, CertifiedResult, certify
-from .fixed_path import schedule_plan
+from .fixed_path import PathSchedule, schedule_plan
 from .sequential import MissionNodes, SequentialSettings, make_legs
 
 
@@ -92,7 +92,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         if progress is not None:
             progress(record)
 
-    result = certify(orbits, _certified_nodes(nodes, mission), a_low, a_high, solver=solver,
+    result = certify(orbits, certified_nodes(nodes, mission), a_low, a_high, solver=solver,
                      gap_rel=solver.gap, time_limit_s=solver.time_limit_s,
                      on_iteration=on_iteration, progress=log, names=ids)  # fmt: skip
     if result.status == "infeasible":
@@ -122,7 +122,8 @@ def _infeasible_message(mission: Mission) -> str:
     )
 
 
-def _certified_nodes(nodes: MissionNodes, mission: Mission) -> CertifiedNodes:
+def certified_nodes(nodes: MissionNodes, mission: Mission) -> CertifiedNodes:
+    """The mission as the certified search needs it (node positions into ``nodes``)."""
     return CertifiedNodes(
         legs=nodes.legs, ops_days=np.asarray(nodes.deorbit_days, dtype=float),
         cost_mps=np.asarray(nodes.cost_mps, dtype=float), first=nodes.first,
@@ -149,25 +150,12 @@ def _finite(value):
 
 def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
               solver: SolverOptions, orbits, records, wall) -> Solution:  # fmt: skip
-    path = list(result.path)
-    schedule = result.schedule
-    plan, notes = schedule_plan(orbits, path, schedule, deorbit_days=nodes.deorbit_days,
-                                tmax_days=mission.tmax_days, j2=mission.j2)  # fmt: skip
-    notes += result.notes  # the search's own notes last: why it stopped, if it did
-    ids = nodes.catalog.ids
-    status = RunStatus.OPTIMAL if result.status == "optimal" else RunStatus.FEASIBLE
-    total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
-    return Solution(
-        path=tuple(ids[k] for k in path),
-        legs=make_legs(ids, path, schedule.a_drift, schedule.inc_drift, schedule.side, plan),
-        total_dv_mps=total,
-        total_duration_days=float(plan.end_day),
-        status=status,
+    return solution_of(
+        nodes, mission, orbits, result.path, result.schedule,
+        status=RunStatus.OPTIMAL if result.status == "optimal" else RunStatus.FEASIBLE,
+        lower_bound_mps=result.lower_mps,
         backend="+".join(sorted({r["backend"] for r in result.log})) or solver.backend,
-        mission=mission,
-        iterations=tuple(records),
-        operations=nodes.operations(path, mission),
-        catalog=nodes.catalog,
+        records=records, notes=result.notes,
         model_size={
             "milp_solves": result.milp_solves,
             "date_cells": result.cells,
@@ -175,7 +163,55 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
             "paths_certified": result.paths_certified,
         },
         timings={"total_s": time.perf_counter() - wall, "search_s": result.seconds},
-        notes=tuple(notes),
+    )  # fmt: skip
+
+
+def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: PathSchedule, *,
+                status: RunStatus, lower_bound_mps: float, backend: str, records=(),
+                notes=(), model_size=None, timings=None) -> Solution:  # fmt: skip
+    """The :class:`Solution` of a certified path's schedule, flown in the true model.
+
+    Parameters
+    ----------
+    nodes : MissionNodes
+        The mission's nodes (its catalog: RAANs at the mission's own day 0).
+    mission : Mission
+    orbits : NodeOrbits
+        ``node_orbits(nodes.catalog, mission)``.
+    path : sequence of int
+        Node positions.
+    schedule : PathSchedule
+        A feasible schedule of ``path`` (:func:`~sdc_cvx.planner.fixed_path.solve_path`).
+    status : RunStatus
+    lower_bound_mps : float
+        Proven bound of the mission [m/s] (capped at the plan's total).
+    backend : str
+    records, notes, model_size, timings
+        As in :class:`Solution`.
+
+    Returns
+    -------
+    Solution
+    """
+    path = [int(k) for k in path]
+    plan, plan_notes = schedule_plan(orbits, path, schedule, deorbit_days=nodes.deorbit_days,
+                                     tmax_days=mission.tmax_days, j2=mission.j2)  # fmt: skip
+    ids = nodes.catalog.ids
+    total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
+    return Solution(
+        path=tuple(ids[k] for k in path),
+        legs=make_legs(ids, path, schedule.a_drift, schedule.inc_drift, schedule.side, plan),
+        total_dv_mps=total,
+        total_duration_days=float(plan.end_day),
+        status=status,
+        backend=backend,
+        mission=mission,
+        iterations=tuple(records),
+        operations=nodes.operations(path, mission),
+        catalog=nodes.catalog,
+        model_size=dict(model_size or {}),
+        timings=dict(timings or {}),
+        notes=tuple(plan_notes) + tuple(notes),  # the search's own notes last
         method="certified",
-        lower_bound_mps=float(min(result.lower_mps, total)),
+        lower_bound_mps=float(min(lower_bound_mps, total)),
     )

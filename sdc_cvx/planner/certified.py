@@ -101,6 +101,27 @@ class CertifiedNodes:
 
 
 @dataclass(frozen=True)
+class CertifiedPath:
+    """One path the search certified: its best schedule and its bracket.
+
+    Attributes
+    ----------
+    path : tuple of int
+        Node positions.
+    schedule : PathSchedule
+        Best schedule found (transfers only).
+    upper_mps, lower_mps : float
+        Total ΔV of that schedule with the node costs, and no schedule of the path costs
+        less [m/s].
+    """
+
+    path: tuple[int, ...]
+    schedule: PathSchedule
+    upper_mps: float
+    lower_mps: float
+
+
+@dataclass(frozen=True)
 class CertifiedResult:
     """Best plan found and what is proven about the optimum.
 
@@ -117,6 +138,12 @@ class CertifiedResult:
         ``optimal``: within the requested gap; ``feasible``: a limit stopped the search;
         ``infeasible``: proven that no plan exists; ``no_plan``: stopped before any plan.
     log : list of dict
+    paths : tuple of CertifiedPath
+        Every path certified on the way that flies, cheapest first (the columns of a
+        campaign's master, :mod:`sdc_cvx.campaign`).
+    complete : bool
+        False when a limit (time, iterations, a failed MILP) ended the search rather
+        than its own criterion (an enumeration is then not known to be whole).
     """
 
     path: tuple[int, ...]
@@ -131,6 +158,8 @@ class CertifiedResult:
     notes: tuple[str, ...] = ()
     edges: int = 0
     paths_certified: int = 0
+    paths: tuple[CertifiedPath, ...] = ()
+    complete: bool = True
 
     @property
     def gap_mps(self) -> float:
@@ -232,10 +261,12 @@ class _Search:
     date cells and the best bound so far, with one method per step of the loop."""
 
     def __init__(self, orbits, nodes: CertifiedNodes, a_low, a_high, *, deadline, say,
-                 initial_cells, names=None, path_tol_rel=0.0):  # fmt: skip
+                 initial_cells, names=None, path_tol_rel=0.0, gap_abs_mps=PATH_TOL_MPS,
+                 ceiling_mps=-np.inf):  # fmt: skip
         n = len(nodes.ops_days)
         self.names = [str(k) for k in range(n)] if names is None else [str(v) for v in names]
-        self.path_tol_rel = path_tol_rel
+        self.path_tol_rel, self.gap_abs = path_tol_rel, gap_abs_mps
+        self.ceiling = ceiling_mps  # enumeration: every path whose bound is under it
         self.nodes, self.n, self.deadline, self.say = nodes, n, deadline, say
         excluded = np.zeros(n, dtype=bool)
         excluded[list(nodes.excluded)] = True
@@ -262,15 +293,29 @@ class _Search:
         self.parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, cells)
         self.upper, self.path, self.schedule = np.inf, (), None
         self.settled: dict[tuple, float] = {}  # path -> its certified lower bound [m/s]
+        self.schedules: dict[tuple, PathSchedule] = {}  # path -> its best schedule
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
         self.completion = None  # per node, cheapest walk of k legs from it (network())
         self.notes: list[str] = []
+        self.limited = False  # a limit, not the search's own criterion, ended it
 
     def label(self, path) -> str:
         return "-".join(self.names[k] for k in path)
 
     def node_cost(self, path) -> float:
         return float(np.sum(self.nodes.cost_mps[list(path)]))
+
+    @property
+    def level(self) -> float:
+        """Arcs and paths above this cannot matter [m/s]: the plan held, or the ceiling
+        of an enumeration when it is higher."""
+        return max(self.upper, self.ceiling)
+
+    def allowed(self, upper: float, gap_rel: float) -> float:
+        return _allowed(upper, gap_rel, self.gap_abs)
+
+    def within(self, lower: float, gap_rel: float) -> bool:
+        return _within(self.upper, lower, gap_rel, self.gap_abs)
 
     def try_path(self, path, why: str) -> None:
         """Certify one path (its best schedule and its lower bound), and hold it if better."""
@@ -286,8 +331,9 @@ class _Search:
         remaining = max(self.deadline - time.perf_counter(), 0.1)
         schedule = solve_path(problem, tol_mps=PATH_TOL_MPS, tol_rel=self.path_tol_rel,
                               time_limit_s=remaining,
-                              cutoff_mps=self.upper - self.node_cost(path))  # fmt: skip
+                              cutoff_mps=self.level - self.node_cost(path))  # fmt: skip
         self.settled[path] = schedule.lower_mps + self.node_cost(path)
+        self.schedules[path] = schedule
         total = schedule.upper_mps + self.node_cost(path)
         if total < self.upper:
             self.upper, self.path, self.schedule = total, path, schedule
@@ -298,9 +344,9 @@ class _Search:
         (the network's cheapest path: :meth:`_Network.pruned`)."""
         alive = path_cost_floor(self.edge_from, self.edge_to, self.edge_floor,
                                 self.nodes.cost_mps, self.nodes.legs,
-                                first=self.nodes.first) <= self.upper + 1e-9  # fmt: skip
+                                first=self.nodes.first) <= self.level + 1e-9  # fmt: skip
         net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive)
-        arcs, network_lower = net.pruned(self.nodes, self.start_allowed, self.upper)
+        arcs, network_lower = net.pruned(self.nodes, self.start_allowed, self.level)
         self.prove(min(network_lower, self.upper))
         self.completion = net.completion
         return net, arcs, network_lower
@@ -316,14 +362,24 @@ class _Search:
                      count=count, completion=self.completion)  # fmt: skip
 
     def open_paths(self, beam, gap_rel: float):
-        """The beam's paths whose arc bounds could beat the plan by more than the gap."""
-        target = self.upper - _allowed(self.upper, gap_rel) if np.isfinite(self.upper) else np.inf
+        """The beam's paths whose arc bounds could beat the plan by more than the gap
+        (in an enumeration: whose arc bounds are under the ceiling)."""
+        target = self.upper - self.allowed(self.upper, gap_rel) if np.isfinite(self.upper) \
+            else np.inf  # fmt: skip
+        target = max(target, self.ceiling)
         return [c for c in beam if c[0] < target]
 
     def status(self, gap_rel: float) -> str:
         if not np.isfinite(self.upper):
             return "infeasible" if self.proven == np.inf else "no_plan"
-        return "optimal" if _within(self.upper, self.proven, gap_rel) else "feasible"
+        return "optimal" if self.within(self.proven, gap_rel) else "feasible"
+
+    def certified_paths(self) -> tuple[CertifiedPath, ...]:
+        """Every settled path that flies, cheapest first."""
+        out = [CertifiedPath(path, schedule, schedule.upper_mps + self.node_cost(path),
+                             self.settled[path])
+               for path, schedule in self.schedules.items() if schedule.feasible]  # fmt: skip
+        return tuple(sorted(out, key=lambda c: c.upper_mps))
 
 
 def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
@@ -332,7 +388,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             progress: Callable[[str], None] | None = None,
             on_iteration: Callable[[dict], None] | None = None, names=None,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
-            split_pieces: int = 2) -> CertifiedResult:  # fmt: skip
+            split_pieces: int = 2, gap_abs_mps: float = PATH_TOL_MPS,
+            stop_above_mps: float = np.inf,
+            ceiling_mps: float = -np.inf) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
     Parameters
@@ -345,7 +403,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     solver : SolverOptions
         MILP backend for the relaxation (its fallback chain is used).
     gap_rel : float
-        Stop when (plan - bound) <= gap_rel * plan (and at most 0.01 m/s is always enough).
+        Stop when (plan - bound) <= max(gap_rel * |plan|, gap_abs_mps).
     time_limit_s : float, optional
         Wall-clock limit of the whole search [s]; the best plan is then returned with its gap.
     seeds : sequence of sequence of int
@@ -361,6 +419,26 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     initial_cells, split_pieces : int
         Date cells per debris at the start (fewer when the edges are many, see
         ``FIRST_ARCS``), and pieces a used cell is split into.
+    gap_abs_mps : float
+        Absolute gap that is always enough [m/s] (0.01 by default).
+    stop_above_mps : float
+        Stop as soon as no plan can cost less than this [m/s] (a campaign's pricing:
+        no mission of negative reduced cost is left); the result's bound says so.
+    ceiling_mps : float
+        Enumerate: certify every path whose lower bound is under this [m/s] (they are
+        in ``paths``), and stop when the relaxation proves that no other path is; the
+        plan and bound are then those of the cheapest, as usual.
+
+    Notes
+    -----
+    Node costs (``nodes.cost_mps``) may be negative, e.g. a campaign's prize for a
+    debris it must remove.  Every rule of the search compares a whole path (or a
+    partial path of k legs with the cheapest completion of the L - k legs left) to a
+    plan of L legs, and every such sum counts exactly L + 1 node costs: adding a
+    constant to every node cost changes both sides of every comparison by the same
+    amount.  So the search with any node costs is the search with non-negative ones
+    (all raised by the same constant), and each pruning rule stays valid
+    (``docs/design.md`` §10).
 
     Returns
     -------
@@ -371,7 +449,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
                      say=progress or (lambda line: None), initial_cells=initial_cells,
-                     names=names, path_tol_rel=gap_rel / 2)  # fmt: skip
+                     names=names, path_tol_rel=gap_rel / 2, gap_abs_mps=gap_abs_mps,
+                     ceiling_mps=ceiling_mps)  # fmt: skip
+    enumerating = np.isfinite(ceiling_mps)
     for seed in seeds:
         if len(seed) == nodes.legs + 1:
             search.try_path(seed, "seed")
@@ -384,6 +464,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     for iteration in range(1, max_iterations + 1):
         started = time.perf_counter()
         net, arcs, network_lower = search.network()
+        if search.proven >= stop_above_mps:
+            break
         beam = []  # the uncut beam paths of the current arcs, cheapest first
         for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
             if len(arcs) == 0 or time.perf_counter() >= deadline:
@@ -392,7 +474,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             open_paths = search.open_paths(beam, gap_rel)
             if not open_paths:
                 break
-            search.try_path(open_paths[0][1], "network")
+            for _, path, _ in open_paths if enumerating else open_paths[:1]:
+                search.try_path(path, "network")
             _refine(search.parts, net, arcs, np.concatenate([rows for *_, rows in open_paths]),
                     split_pieces)  # fmt: skip
             search.say(f"  refine the cells of {len(open_paths)} paths whose bounds (from "
@@ -406,6 +489,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         remaining = deadline - time.perf_counter()
         if remaining <= 0:
             search.notes.append(f"time limit ({time_limit_s:g} s) reached")
+            search.limited = True
             break
         start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
         search.say(
@@ -427,6 +511,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             if stopped and not out_of_time:
                 continue
             search.notes.append(f"relaxation MILP failed: {result.report.message}")
+            search.limited = True
             break
         if result.path and np.isfinite(result.lower_mps):
             search.try_path(result.path, "relaxation")
@@ -443,29 +528,38 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         search.say(f"  bound {lower:.2f}, plan {search.upper:.2f} m/s ({len(arcs)} arcs, "
                    f"{search.parts.count()} cells, MILP {result.report.solve_seconds:.1f} s, "
                    f"{result.report.nodes} nodes)")  # fmt: skip
-        if not np.isfinite(result.lower_mps) or _within(search.upper, lower, gap_rel):
+        if enumerating:
+            if result.lower_mps > ceiling_mps:  # every path under the ceiling is settled
+                break
+        elif not np.isfinite(result.lower_mps) or search.within(lower, gap_rel):
+            break
+        if lower >= stop_above_mps:
             break
         if stopped and out_of_time:
             search.notes.append(f"time limit ({time_limit_s:g} s) reached during a MILP")
+            search.limited = True
             break
         _refine(search.parts, net, arcs, result.arcs, split_pieces)
     else:
         search.notes.append(f"iteration limit ({max_iterations}) reached")
+        search.limited = True
     status = search.status(gap_rel)
     return CertifiedResult(search.path, search.schedule, search.upper,
                            min(search.proven, search.upper), status, rows, milp_solves,
                            search.parts.count(), time.perf_counter() - clock,
                            tuple(search.notes), edges=int(len(search.edge_from)),
-                           paths_certified=len(search.settled))  # fmt: skip
+                           paths_certified=len(search.settled),
+                           paths=search.certified_paths(), complete=not search.limited)  # fmt: skip
 
 
-def _allowed(upper, gap_rel) -> float:
+def _allowed(upper, gap_rel, gap_abs=PATH_TOL_MPS) -> float:
     """The gap a certificate may leave below a plan of ``upper`` m/s [m/s]."""
-    return max(gap_rel * abs(upper), PATH_TOL_MPS)
+    return max(gap_rel * abs(upper), gap_abs)
 
 
-def _within(upper, lower, gap_rel) -> bool:
-    return bool(np.isfinite(upper) and upper - lower <= _allowed(upper, gap_rel) * (1 + 1e-9))
+def _within(upper, lower, gap_rel, gap_abs=PATH_TOL_MPS) -> bool:
+    allowed = _allowed(upper, gap_rel, gap_abs) * (1 + 1e-9)
+    return bool(np.isfinite(upper) and upper - lower <= allowed)
 
 
 def _with_limit(solver: SolverOptions, remaining: float) -> SolverOptions:

@@ -178,3 +178,13 @@ def _locked(out: Path) -> Iterator[None]:
         (out / _LOCK_NAME).unlink(missing_ok=True)  # a finished folder keeps no lock file
     finally:
         handle.close()
+
+
+def open_executor(executor=None, scheduler=None, workers: int | None = None,
+                  pending: int = 1):  # fmt: skip
+    """Where independent tasks run, as a context manager yielding a ``concurrent.futures``
+    executor: ``executor`` itself if given, a Dask cluster's (``scheduler``: an address
+    or a ``distributed.Client``), else a local process pool of ``workers`` processes (at
+    most ``pending``) whose workers die with this process.  Sweeps and a campaign's
+    pricing problems (:mod:`sdc_cvx.campaign`) run on it."""
+    return _executor(executor, scheduler, workers, pending)

@@ -1,0 +1,192 @@
+"""Pricing: the cheapest missions of one launch under prices on the debris.
+
+The master of a campaign (:mod:`~sdc_cvx.campaign.master`) prices each debris i at
+``y_i`` (the dual of its "removed at most once" row, >= 0; of a ``must_remove`` row,
+of any sign).  A mission's reduced cost is its ΔV plus the prices of the debris it
+removes, less its launch's dual.  So the pricing problem of a launch is an ordinary
+mission whose operations cost at debris i is raised by ``y_i``: the certified search
+(:func:`~sdc_cvx.planner.certified.certify`) with node costs, which may be negative
+(a prize) on a ``must_remove`` debris.  The search is valid with any node costs: every
+comparison it makes is between sums of exactly n node costs on each side (see its
+Notes, and ``docs/design.md`` §10).
+
+Each pricing returns every path the search certified on the way (a column: the launch,
+the path, its best schedule, its ΔV and its proven lower bound) and the proven lower
+bound of the launch's best mission under the prices.
+
+References
+----------
+.. [1] G. Desaulniers, J. Desrosiers and M. M. Solomon (eds.), *Column Generation*,
+   Springer, 2005 (the master, pricing and Lagrangian bound).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..inputs.catalog import Catalog
+from ..inputs.mission import Mission
+from ..milp.types import SolverOptions
+from ..network.edges import drift_radius_bounds, node_orbits
+from ..planner.api import certified_nodes
+from ..planner.certified import certify
+from ..planner.fixed_path import PathSchedule
+from ..planner.sequential import MissionNodes
+
+
+@dataclass(frozen=True)
+class Launch:
+    """One mission of a campaign, as its pricing needs it.
+
+    Attributes
+    ----------
+    index : int
+        Position in the campaign (0-based).
+    day : float
+        Launch day [days after the catalog's start].
+    mission : Mission
+    catalog : Catalog
+        The candidates with their RAANs at the launch day (``Catalog.advanced``): the
+        mission's own day 0.
+    """
+
+    index: int
+    day: float
+    mission: Mission
+    catalog: Catalog
+
+    @classmethod
+    def all_of(cls, campaign, catalog: Catalog) -> list[Launch]:
+        """Every launch of ``campaign`` over ``catalog`` (RAANs carried to each day)."""
+        return [cls(k, float(day), mission, catalog.advanced(day, j2=mission.j2))
+                for k, (day, mission) in enumerate(zip(campaign.launch_days, campaign.missions,
+                                                       strict=True))]  # fmt: skip
+
+    def label(self) -> str:
+        return f"mission {self.index + 1} (launch day {self.day:g})"
+
+
+@dataclass(frozen=True)
+class Column:
+    """One flyable mission of a launch: a column of the master.
+
+    Attributes
+    ----------
+    launch : int
+    nodes : tuple of int
+        Node positions of the path (catalog rows; the injection orbit, if any, is the
+        row after the catalog's).
+    debris : tuple of int
+        Catalog rows it removes (sorted).
+    dv_mps : float
+        Total ΔV of its schedule, transfers and operations [m/s].
+    lower_mps : float
+        No schedule of this path costs less [m/s].
+    schedule : PathSchedule
+    """
+
+    launch: int
+    nodes: tuple[int, ...]
+    debris: tuple[int, ...]
+    dv_mps: float
+    lower_mps: float
+    schedule: PathSchedule
+
+    @property
+    def key(self) -> tuple:
+        return (self.launch, self.nodes)
+
+
+@dataclass(frozen=True)
+class Pricing:
+    """What one pricing proved and found.
+
+    Attributes
+    ----------
+    launch : int
+    columns : tuple of Column
+        Every path certified on the way that flies, cheapest first (by ΔV and prices).
+    lower_mps : float
+        No mission of this launch costs less under the prices (ΔV plus the prices of
+        its debris) [m/s]; ``inf``: none flies.
+    upper_mps : float
+        The cheapest found, under the prices [m/s].
+    status : str
+        The search's (``optimal``, ``feasible``, ``infeasible``, ``no_plan``).
+    seconds : float
+    notes : tuple of str
+    complete : bool
+        The search ended by its own criterion, not a limit (an enumeration is whole).
+    """
+
+    launch: int
+    columns: tuple[Column, ...]
+    lower_mps: float
+    upper_mps: float
+    status: str
+    seconds: float
+    notes: tuple[str, ...] = ()
+    complete: bool = True
+
+
+def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
+          tol_mps: float = 0.01, stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
+          time_limit_s: float | None = None, exclude=(), must_visit=(),
+          seeds=()) -> Pricing:  # fmt: skip
+    """The cheapest missions of ``launch`` with ``prices`` added to the debris' costs.
+
+    Parameters
+    ----------
+    launch : Launch
+    prices : array_like, optional
+        Price of removing each catalog row [m/s] (default none); may be negative.
+    solver : SolverOptions
+        Backend of the search's relaxation MILPs.
+    tol_mps : float
+        Absolute gap the search closes [m/s].
+    stop_above_mps : float
+        Stop once no mission can cost less than this under the prices [m/s] (the
+        launch's dual: no column of negative reduced cost is left).
+    ceiling_mps : float
+        Enumerate every path whose lower bound under the prices is below this [m/s].
+    time_limit_s : float, optional
+    exclude, must_visit : sequence of int
+        Catalog rows this pricing must leave out / must remove (the greedy campaign).
+    seeds : sequence of tuple of int
+        Paths (node positions) tried first as incumbents.
+
+    Returns
+    -------
+    Pricing
+    """
+    clock = time.perf_counter()
+    mission = launch.mission
+    nodes = MissionNodes.of(launch.catalog, mission)
+    orbits = node_orbits(nodes.catalog, mission)
+    a_low, a_high = drift_radius_bounds(mission)
+    operations = np.asarray(nodes.cost_mps, dtype=float)
+    extra = np.zeros(len(operations))
+    if prices is not None:
+        extra[: len(launch.catalog)] = np.asarray(prices, dtype=float)
+    base = certified_nodes(nodes, mission)
+    search_nodes = replace(
+        base, cost_mps=operations + extra,
+        excluded=tuple(sorted(set(base.excluded) | {int(k) for k in exclude})),
+        must_visit=tuple(sorted(set(base.must_visit) | {int(k) for k in must_visit})))  # fmt: skip
+    result = certify(orbits, search_nodes, a_low, a_high, solver=solver, gap_rel=0.0,
+                     gap_abs_mps=tol_mps, time_limit_s=time_limit_s, seeds=seeds,
+                     stop_above_mps=stop_above_mps, ceiling_mps=ceiling_mps,
+                     names=nodes.catalog.ids)  # fmt: skip
+    debris_rows = len(launch.catalog)
+    columns = tuple(
+        Column(launch.index, c.path, tuple(sorted(k for k in c.path if k < debris_rows)),
+               float(c.schedule.upper_mps + operations[list(c.path)].sum()),
+               float(c.schedule.lower_mps + operations[list(c.path)].sum()), c.schedule)
+        for c in result.paths
+    )  # fmt: skip
+    return Pricing(launch.index, columns, float(result.lower_mps), float(result.upper_mps),
+                   result.status, time.perf_counter() - clock, result.notes,
+                   result.complete)  # fmt: skip

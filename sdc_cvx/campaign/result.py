@@ -1,0 +1,211 @@
+"""``CampaignSolution``: the campaign's missions, its bound and gap, and the greedy baseline."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+
+import pandas as pd
+
+from ..inputs.campaign import Campaign
+from ..inputs.catalog import Catalog
+from ..solution import RunStatus, Solution
+
+
+@dataclass(frozen=True)
+class GreedyCampaign:
+    """The one-mission-at-a-time campaign: the cheapest first mission, its debris removed,
+    the cheapest second mission, and so on.
+
+    Attributes
+    ----------
+    dv_mps : float or None
+        Its total ΔV [m/s]; None when a later launch found no mission among the debris
+        left (``why`` says so).
+    missions : tuple
+        Its columns, in launch order.
+    why : str
+    paths : tuple of str
+        Each mission's path, as text.
+    """
+
+    dv_mps: float | None
+    missions: tuple = ()
+    why: str = ""
+    paths: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class CampaignSolution:
+    """The best campaign found and what is proven about the optimum.
+
+    Attributes
+    ----------
+    campaign : Campaign
+    catalog : Catalog
+        The candidates at day 0 (the campaign's start).
+    missions : tuple of Solution
+        One per launch, in launch order; each mission's day 0 is its launch day (its
+        catalog's start is the campaign's plus the launch day).
+    total_dv_mps : float
+        Sum of the missions' total ΔV [m/s].
+    lower_bound_mps : float
+        No campaign of these missions costs less [m/s].
+    status : RunStatus
+        ``optimal`` (within the requested gap) or ``feasible`` (a limit stopped the
+        search; the gap says how far it may be).
+    greedy : GreedyCampaign
+    history : tuple of dict
+        Each step: ``step``, ``seconds``, ``lower_mps``, ``upper_mps``, ``lp_mps``,
+        ``columns``, ``pricings``.
+    columns, pricings : int
+        Missions in the master's pool; pricing problems solved.
+    seconds : float
+    notes : tuple of str
+    gap_requested : float
+    """
+
+    campaign: Campaign
+    catalog: Catalog
+    missions: tuple[Solution, ...]
+    total_dv_mps: float
+    lower_bound_mps: float
+    status: RunStatus
+    greedy: GreedyCampaign
+    history: tuple[dict, ...] = ()
+    columns: int = 0
+    pricings: int = 0
+    seconds: float = 0.0
+    notes: tuple[str, ...] = ()
+    gap_requested: float = 1e-3
+
+    @property
+    def certified(self) -> bool:
+        """True when the campaign is proven within the requested gap of the optimum."""
+        return self.status == RunStatus.OPTIMAL
+
+    @property
+    def gap_mps(self) -> float:
+        """Plan minus proven lower bound [m/s]."""
+        return max(self.total_dv_mps - self.lower_bound_mps, 0.0)
+
+    @property
+    def gap_rel(self) -> float:
+        return self.gap_mps / self.total_dv_mps if self.total_dv_mps > 0 else 0.0
+
+    @property
+    def launch_days(self) -> tuple[float, ...]:
+        return self.campaign.launch_days
+
+    def greedy_gap_rel(self) -> float | None:
+        """How far greedy is above the proven bound, relative to greedy [-]."""
+        dv = self.greedy.dv_mps
+        if dv is None or dv <= 0:
+            return None
+        return max(dv - self.lower_bound_mps, 0.0) / dv
+
+    def quality(self) -> str:
+        gap = f"gap {self.gap_mps:.2f} m/s, {100 * self.gap_rel:.2f} %"
+        if self.status == RunStatus.OPTIMAL:
+            return f"optimal ({gap}; lower bound {self.lower_bound_mps:.2f} m/s)"
+        why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
+        return f"{self.status}, {gap} ({why}; lower bound {self.lower_bound_mps:.2f} m/s)"
+
+    def summary(self) -> str:
+        """A few lines for people: each mission, the total, the bound, greedy."""
+        lines = []
+        for k, (day, mission) in enumerate(zip(self.launch_days, self.missions, strict=True)):
+            lines.append(
+                f"mission {k + 1:<2d} day {day:8.2f}  {' -> '.join(mission.path):<40} "
+                f"{mission.total_dv_mps:8.2f} m/s  {mission.total_duration_days:6.1f} d"
+            )
+        lines.append(f"total dV  {self.total_dv_mps:.2f} m/s, {self.quality()}")
+        if self.greedy.dv_mps is not None:
+            rel = self.greedy_gap_rel()
+            lines.append(f"greedy    {self.greedy.dv_mps:.2f} m/s (one mission at a time; "
+                         f"{100 * rel:.2f} % above the bound)")  # fmt: skip
+        else:
+            lines.append(f"greedy    none ({self.greedy.why})")
+        lines.append(f"search    {self.columns} missions priced into the master, "
+                     f"{self.pricings} pricing problems, {self.seconds:.1f} s")  # fmt: skip
+        return "\n".join(lines)
+
+    def missions_frame(self) -> pd.DataFrame:
+        """``missions.csv``: one row per mission (launch day, path, ΔV, dates, folder)."""
+        rows = []
+        for k, (day, mission) in enumerate(zip(self.launch_days, self.missions, strict=True)):
+            rows.append({
+                "mission": k + 1, "launch_day": day, "path": "->".join(mission.path),
+                "n": mission.mission.n, "total_dv_mps": mission.total_dv_mps,
+                "transfers_dv_mps": mission.transfers_dv_mps,
+                "operations_dv_mps": mission.operations_dv_mps,
+                "duration_days": mission.total_duration_days,
+                "end_day": day + mission.total_duration_days,
+                "tmax_days": mission.mission.tmax_days, "folder": mission_folder(k),
+            })  # fmt: skip
+        return pd.DataFrame(rows)
+
+    def history_frame(self) -> pd.DataFrame:
+        """The bound and the plan against elapsed time, one row per step."""
+        return pd.DataFrame(list(self.history))
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict: the keys of ``campaign.json``."""
+        start = self.catalog.start
+        return {
+            "status": str(self.status),
+            "certified": self.certified,
+            "total_dv_mps": self.total_dv_mps,
+            "lower_bound_mps": self.lower_bound_mps,
+            "gap_mps": self.gap_mps,
+            "gap_rel": self.gap_rel,
+            "gap_requested": self.gap_requested,
+            "greedy_dv_mps": self.greedy.dv_mps,
+            "greedy_gap_rel": self.greedy_gap_rel(),
+            "greedy_paths": [p.split(" -> ") for p in self.greedy.paths],
+            "start_utc": None if start is None else start.isoformat(),
+            "missions": [
+                {
+                    "launch_day": day,
+                    "path": list(m.path),
+                    "total_dv_mps": m.total_dv_mps,
+                    "duration_days": m.total_duration_days,
+                    "folder": mission_folder(k),
+                }
+                for k, (day, m) in enumerate(zip(self.launch_days, self.missions, strict=True))
+            ],  # fmt: skip
+            "campaign": self.campaign.to_dict(),
+            "columns": self.columns,
+            "pricings": self.pricings,
+            "seconds": self.seconds,
+            "history": [_finite(row) for row in self.history],
+            "notes": list(self.notes),
+        }
+
+    def to_json(self, indent=2) -> str:
+        return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
+
+    def save(self, folder, *, formats=("png",), scenario_toml: str | None = None,
+             log: str | None = None) -> list:  # fmt: skip
+        """Write the campaign folder (see :func:`sdc_cvx.report.campaign_folder.write_campaign`)."""
+        from ..report.campaign_folder import write_campaign
+
+        return write_campaign(folder, self, formats=tuple(formats), scenario_toml=scenario_toml,
+                              log=log)  # fmt: skip
+
+    def plot(self) -> dict:
+        """The campaign's figures (matplotlib ``Figure`` by name: ``timeline``, ``raan``,
+        ``dv``, ``bound``), drawn and not saved."""
+        from ..report.campaign_plots import campaign_figures
+
+        return campaign_figures(self)
+
+
+def mission_folder(k: int) -> str:
+    """Folder of the k-th mission (0-based) in the campaign folder: ``mission_01``, ..."""
+    return f"mission_{k + 1:02d}"
+
+
+def _finite(row: dict) -> dict:
+    return {key: (None if isinstance(value, float) and not abs(value) < float("inf") else value)
+            for key, value in row.items()}  # fmt: skip

@@ -1,0 +1,429 @@
+"""``solve_campaign``: the cheapest campaign, with a certified lower bound.
+
+The search (``docs/design.md`` §10), in named steps:
+
+1. *Launches*: each launch's candidates with their RAANs at its launch day; each
+   launch priced alone (no prices): a launch with no flyable mission makes the campaign
+   infeasible, said with its day.
+2. *Greedy* (the baseline): the best first mission, its debris removed, the best second
+   mission, and so on.  Its missions are columns too.
+3. *Column generation*: the master LP over the pool gives prices ``y`` on the debris and
+   ``sigma_k`` on the launches; each launch is priced (in parallel: a process pool, or
+   a Dask cluster); its columns join the pool.  Whatever the prices, the Lagrangian
+   bound ``L(y) = sum_k B_k(y) - sum_i y_i`` is a lower bound of every campaign, where
+   ``B_k(y)`` is the launch's proven lower bound of ``min over its missions of (ΔV +
+   sum of the prices of their debris)`` (it equals the LP value plus the sum of the
+   launches' most negative reduced costs); the best is kept.  The integer master over
+   the pool is the plan.  The loop ends when no launch has a column of negative reduced
+   cost (the LP is solved), or plan and bound meet.
+4. *Closing*: if a gap is left, every mission whose reduced cost could be below
+   ``plan - L(y)`` is enumerated (a campaign cheaper than the plan can only be made of
+   such missions); the integer master over the pool is then the optimum, and the same
+   master priced at the paths' certified lower bounds is the bound.
+
+References
+----------
+.. [1] G. B. Dantzig and P. Wolfe, "Decomposition principle for linear programs",
+   Operations Research 8(1), 101-111, 1960.
+.. [2] G. Desaulniers, J. Desrosiers and M. M. Solomon (eds.), *Column Generation*,
+   Springer, 2005 (the Lagrangian bound, and reduced-cost enumeration of columns).
+.. [3] M. Cerf, "Multiple space debris collecting mission - Debris selection and
+   trajectory optimization", Journal of Optimization Theory and Applications,
+   156(3), 761-796, 2013.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import MissionInfeasible, SolverFailure
+from ..inputs.campaign import Campaign
+from ..inputs.catalog import Catalog
+from ..milp.types import SolverOptions
+from ..network.edges import node_orbits
+from ..planner.api import solution_of
+from ..planner.sequential import MissionNodes
+from ..solution import RunStatus
+from ..study.executors import open_executor
+from .master import solve_ip, solve_lp
+from .pricing import Column, Launch, Pricing, price
+from .result import CampaignSolution, GreedyCampaign
+
+DEFAULT_GAP_REL = 1e-3
+PATH_TOL_MPS = 0.01
+"""Absolute tolerance of each mission's schedule [m/s] (the single mission's)."""
+MAX_ROUNDS = 200
+"""Column generation rounds at most."""
+
+
+@dataclass
+class _Pool:
+    """The columns found so far, one per (launch, path): the best schedule and the
+    highest lower bound known of each."""
+
+    columns: list[Column] = field(default_factory=list)
+    index: dict = field(default_factory=dict)
+
+    def add(self, columns) -> int:
+        """Add ``columns``; the number that were new paths or cheaper schedules."""
+        new = 0
+        for column in columns:
+            k = self.index.get(column.key)
+            if k is None:
+                self.index[column.key] = len(self.columns)
+                self.columns.append(column)
+                new += 1
+                continue
+            old = self.columns[k]
+            new += column.dv_mps < old.dv_mps - 1e-9
+            best = column if column.dv_mps < old.dv_mps else old
+            lower = max(old.lower_mps, column.lower_mps)
+            self.columns[k] = Column(best.launch, best.nodes, best.debris, best.dv_mps,
+                                     min(lower, best.dv_mps), best.schedule)  # fmt: skip
+        return new
+
+    def __len__(self):
+        return len(self.columns)
+
+
+class _Campaign:
+    """The search's state: launches, pool, best plan and bound, history; one method per
+    step (see the module docstring)."""
+
+    def __init__(self, catalog: Catalog, campaign: Campaign, solver: SolverOptions,
+                 gap_rel: float, deadline: float, say, run) -> None:  # fmt: skip
+        self.catalog, self.campaign, self.solver = catalog, campaign, solver
+        self.gap_rel, self.deadline, self.say, self.run = gap_rel, deadline, say, run
+        self.launches = Launch.all_of(campaign, catalog)
+        index = {k: n for n, k in enumerate(catalog.ids)}
+        self.must = tuple(index[k] for k in campaign.must_remove)
+        self.pool = _Pool()
+        self.upper, self.plan, self.lower = np.inf, None, -np.inf
+        self.history: list[dict] = []
+        self.clock = time.perf_counter()
+        self.pricings = 0
+        self.notes: list[str] = []
+        self.tol = PATH_TOL_MPS
+        self.backends: set[str] = set()
+
+    # ------------------------------------------------------------------ helpers
+    def remaining(self) -> float | None:
+        if not np.isfinite(self.deadline):
+            return None
+        return self.deadline - time.perf_counter()
+
+    def out_of_time(self) -> bool:
+        left = self.remaining()
+        return left is not None and left <= 0
+
+    def allowed(self) -> float:
+        return max(self.gap_rel * abs(self.upper), PATH_TOL_MPS * len(self.launches))
+
+    def within(self) -> bool:
+        return bool(np.isfinite(self.upper) and self.upper - self.lower <= self.allowed() * (
+            1 + 1e-9))  # fmt: skip
+
+    def record(self, step: str, lp_value=None) -> None:
+        self.history.append(dict(step=step, seconds=time.perf_counter() - self.clock,
+                                 lower_mps=self.lower, upper_mps=self.upper,
+                                 lp_mps=lp_value, columns=len(self.pool),
+                                 pricings=self.pricings))  # fmt: skip
+        gap = self.upper - self.lower
+        self.say(f"  {step}: plan {self.upper:.2f} m/s, bound {self.lower:.2f} m/s, gap "
+                 f"{gap:.2f} m/s, {len(self.pool)} columns, {self.pricings} pricings")  # fmt: skip
+
+    def price_all(self, tasks) -> list[Pricing]:
+        """Run the pricing ``tasks`` (launch, keyword arguments) where they run."""
+        left = self.remaining()
+        out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left))
+                        for launch, kwargs in tasks])  # fmt: skip
+        self.pricings += len(out)
+        return out
+
+    def master_plan(self) -> None:
+        """The integer master over the pool: the plan, if it improves."""
+        plan = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
+                        solver=self.solver)  # fmt: skip
+        if plan is not None:
+            self.backends.add(plan.backend)
+            if plan.value < self.upper - 1e-9:
+                self.upper, self.plan = plan.value, [self.pool.columns[c] for c in plan.chosen]
+
+    # ------------------------------------------------------------------ steps
+    def launches_alone(self) -> list[Pricing]:
+        """Step 1: each launch priced alone; infeasible launches end the campaign."""
+        self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
+                 "each launch alone")  # fmt: skip
+        alone = self.price_all([(launch, dict(tol_mps=PATH_TOL_MPS)) for launch in self.launches])
+        for launch, result in zip(self.launches, alone, strict=True):
+            self.pool.add(result.columns)
+            if result.status == "infeasible":
+                raise MissionInfeasible(_infeasible_launch(launch))
+            if result.status == "no_plan":
+                raise SolverFailure(
+                    f"{launch.label()}: the time limit stopped the search before any plan; "
+                    "allow more time"
+                )
+            best = result.columns[0] if result.columns else None
+            self.say(f"  {launch.label()} alone: {result.upper_mps:.2f} m/s "
+                     f"({self.path_text(best)}; {result.seconds:.1f} s)")  # fmt: skip
+        return alone
+
+    def greedy(self, alone: list[Pricing]) -> GreedyCampaign:
+        """Step 2: one mission at a time, the cheapest of the debris left."""
+        removed: list[int] = []
+        missions: list[Column] = []
+        required = list(self.must)
+        for launch, first in zip(self.launches, alone, strict=True):
+            left = [k for k in required if k not in removed]
+            must = left[: launch.mission.n]
+            if not removed and not must and first.columns:
+                result = first  # the first launch alone is greedy's first mission
+            else:
+                result = self.price_all([(launch, dict(tol_mps=PATH_TOL_MPS, exclude=removed,
+                                                       must_visit=must))])[0]  # fmt: skip
+                self.pool.add(result.columns)
+            if not result.columns:
+                why = "time limit" if result.status == "no_plan" else "no mission flies"
+                self.say(f"  greedy stops at {launch.label()}: {why} with the debris left")
+                return GreedyCampaign(None, tuple(missions), f"{launch.label()}: {why} "
+                                      "with the debris the earlier missions left")  # fmt: skip
+            missions.append(result.columns[0])
+            removed += list(result.columns[0].debris)
+        if any(k not in removed for k in required):
+            return GreedyCampaign(None, tuple(missions), "must_remove debris left over")
+        total = float(sum(c.dv_mps for c in missions))
+        self.say(f"  greedy campaign: {total:.2f} m/s")
+        return GreedyCampaign(total, tuple(missions), "")
+
+    def generate_columns(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Step 3: column generation until the LP is solved, the gap met or time out.
+
+        Returns the last prices and the launches' bounds under them (for step 4).
+        """
+        last = None
+        for round_ in range(1, MAX_ROUNDS + 1):
+            lp = solve_lp(self.pool.columns, len(self.launches), len(self.catalog), self.must)
+            tasks = [(launch, dict(prices=lp.prices, tol_mps=self.tol,
+                                   stop_above_mps=lp.sigma[k] - self.tol,
+                                   seeds=self.seeds(k, lp.prices)))
+                     for k, launch in enumerate(self.launches)]  # fmt: skip
+            results = self.price_all(tasks)
+            bounds = np.array([r.lower_mps for r in results])
+            lagrangian = float(bounds.sum() - lp.prices.sum())
+            if np.isfinite(lagrangian):
+                self.lower = max(self.lower, lagrangian)
+                last = (lp.prices, bounds)
+            new = sum(self.pool.add(r.columns) for r in results)
+            self.master_plan()
+            self.record(f"round {round_} (LP {lp.value:.2f} m/s, {new} new columns)", lp.value)
+            solved = all(r.lower_mps >= lp.sigma[k] - self.tol - 1e-9
+                         for k, r in enumerate(results))  # fmt: skip
+            if solved and lp.artificial > 1e-6:
+                raise MissionInfeasible(
+                    "proven: no campaign removes each debris at most once with these missions "
+                    f"({self.missions_text()}); every launch flies alone, but not together. "
+                    "Relax one of: fewer debris per mission (n), must_remove, a longer "
+                    "mission (tmax_days), more candidates"
+                )
+            if self.within() or solved or self.out_of_time() or new == 0:
+                if self.out_of_time():
+                    self.notes.append("time limit reached during column generation")
+                elif new == 0 and not solved and not self.within():
+                    self.notes.append("column generation stalled: no new column")
+                break
+        else:
+            self.notes.append(f"round limit ({MAX_ROUNDS}) of the column generation reached")
+        return last
+
+    def close(self, prices: np.ndarray, bounds: np.ndarray) -> None:
+        """Step 4: every mission that could be on a cheaper campaign, then the exact master."""
+        window = self.upper - self.lower
+        self.say(f"  closing the gap: every mission within {window:.2f} m/s of its launch's "
+                 "best reduced cost")  # fmt: skip
+        tasks = [(launch, dict(prices=prices, tol_mps=self.tol,
+                               ceiling_mps=bounds[k] + window + self.tol))
+                 for k, launch in enumerate(self.launches)]  # fmt: skip
+        results = self.price_all(tasks)
+        new = sum(self.pool.add(r.columns) for r in results)
+        self.master_plan()
+        if all(r.complete for r in results):
+            lower = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
+                             solver=self.solver,
+                             costs=[c.lower_mps for c in self.pool.columns])  # fmt: skip
+            if lower is not None:
+                self.lower = max(self.lower, min(lower.value, self.upper))
+        else:
+            self.notes.append("time limit reached while closing the gap")
+        self.record(f"closing ({new} new columns)")
+
+    # ------------------------------------------------------------------ words
+    def seeds(self, k: int, prices) -> list[tuple[int, ...]]:
+        """The pool's cheapest paths of launch k under the prices (incumbents to start)."""
+        mine = [c for c in self.pool.columns if c.launch == k]
+        mine.sort(key=lambda c: c.dv_mps + float(np.sum(prices[list(c.debris)])))
+        return [c.nodes for c in mine[:3]]
+
+    def path_text(self, column: Column | None) -> str:
+        if column is None:
+            return "no plan"
+        ids = MissionNodes.of(self.launches[column.launch].catalog,
+                              self.launches[column.launch].mission).catalog.ids  # fmt: skip
+        return " -> ".join(ids[k] for k in column.nodes)
+
+    def missions_text(self) -> str:
+        return ", ".join(f"n = {m.n} from day {d:g}" for d, m in zip(
+            self.campaign.launch_days, self.campaign.missions, strict=True))  # fmt: skip
+
+
+def _infeasible_launch(launch: Launch) -> str:
+    mission = launch.mission
+    return (
+        f"{launch.label()}: proven that no mission of n = {mission.n} debris ends within "
+        f"T_max = {mission.tmax_days:g} days from that day (certified search over every "
+        "ordered pair of debris), so no campaign does. Relax one of: a longer mission "
+        "(tmax_days), fewer debris (n), a wider drift altitude band "
+        f"{mission.drift_altitude_km}, another launch day"
+    )
+
+
+def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions | None = None,
+                   gap: float = DEFAULT_GAP_REL, time_limit_s: float | None = None,
+                   workers: int | None = None, scheduler=None, executor=None,
+                   log: Callable[[str], None] | None = None) -> CampaignSolution:  # fmt: skip
+    """The cheapest campaign of ``campaign``'s missions over ``catalog``, with its bound.
+
+    Parameters
+    ----------
+    catalog : Catalog
+        Candidate debris, RAANs at day 0 (the campaign's start).
+    campaign : Campaign
+        Launch days and the mission flown from each.
+    solver : SolverOptions, optional
+        MILP backend of the pricing searches and of the integer master (HiGHS by
+        default); the master LP is always HiGHS (its duals).
+    gap : float
+        Stop when plan - bound <= max(gap * plan, 0.01 m/s per mission) [-].
+    time_limit_s : float, optional
+        Wall-clock limit of the whole search [s]; the best campaign is then returned
+        with its gap (status ``feasible``).
+    workers : int, optional
+        Processes of the local pool pricing the launches in parallel (default: the
+        cores, at most one per launch; 1: in this process).
+    scheduler : str or distributed.Client, optional
+        A Dask scheduler to price on instead (``pip install 'sdc_cvx[dask]'``).
+    executor : concurrent.futures.Executor, optional
+        Any executor to price on instead.
+    log : callable, optional
+        Receives one line per step (each launch, the greedy campaign, each round's
+        LP value, plan, bound and gap).
+
+    Returns
+    -------
+    CampaignSolution
+
+    Raises
+    ------
+    MissionError
+        The campaign does not fit the catalog (unknown ids, too few candidates).
+    MissionInfeasible
+        A launch has no flyable mission, or the missions cannot share the debris.
+    SolverFailure
+        A backend failed, or the time limit came before any campaign.
+    """
+    if not isinstance(catalog, Catalog):
+        raise TypeError(f"catalog must be a Catalog, got {type(catalog).__name__}")
+    if not isinstance(campaign, Campaign):
+        raise TypeError(f"campaign must be a Campaign, got {type(campaign).__name__}")
+    solver = SolverOptions() if solver is None else solver
+    campaign.check_candidates(catalog.ids)
+    clock = time.perf_counter()
+    deadline = np.inf if time_limit_s is None else clock + time_limit_s
+    say = log or (lambda line: None)
+    launches = len(campaign)
+    inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
+    with _pricing_executor(inline, executor, scheduler, workers, launches) as run:
+        search = _Campaign(catalog, campaign, solver, gap, deadline, say, run)
+        alone = search.launches_alone()
+        greedy = search.greedy(alone)
+        search.master_plan()
+        if search.plan is None and greedy.dv_mps is None and search.out_of_time():
+            raise SolverFailure("the time limit came before any campaign was found")
+        estimate = search.upper if np.isfinite(search.upper) else sum(
+            p.upper_mps for p in alone)  # fmt: skip
+        search.tol = max(PATH_TOL_MPS, gap * estimate / (4 * launches))
+        search.record("launches alone and greedy")
+        last = None
+        if not search.within():
+            last = search.generate_columns()
+        if not search.within() and last is not None and not search.out_of_time() \
+                and search.plan is not None:  # fmt: skip
+            search.close(*last)
+    if search.plan is None:
+        raise SolverFailure(
+            "no campaign was found within the limits (the launches fly alone, but the pool "
+            "of missions holds no disjoint set of them): allow more time"
+        )
+    return _solution(search, greedy, time.perf_counter() - clock)
+
+
+class _pricing_executor:
+    """``run(tasks) -> results``: the pricing tasks in this process, or on an executor."""
+
+    def __init__(self, inline, executor, scheduler, workers, pending):
+        self.inline = inline
+        self.context = None if inline else open_executor(executor, scheduler, workers, pending)
+
+    def __enter__(self):
+        if self.inline:
+            return lambda tasks: [price(launch, **kwargs) for launch, kwargs in tasks]
+        pool = self.context.__enter__()
+
+        def run(tasks):
+            futures = [pool.submit(price, launch, **kwargs) for launch, kwargs in tasks]
+            return [f.result() for f in futures]
+
+        return run
+
+    def __exit__(self, *exc):
+        if self.context is not None:
+            return self.context.__exit__(*exc)
+        return False
+
+
+def _solution(search: _Campaign, greedy: GreedyCampaign, seconds: float) -> CampaignSolution:
+    status = RunStatus.OPTIMAL if search.within() else RunStatus.FEASIBLE
+    missions = tuple(_mission_solution(search, column, status) for column in search.plan)
+    greedy_paths = tuple(search.path_text(c) for c in greedy.missions)
+    return CampaignSolution(
+        campaign=search.campaign,
+        catalog=search.catalog,
+        missions=missions,
+        total_dv_mps=float(sum(m.total_dv_mps for m in missions)),
+        lower_bound_mps=float(min(search.lower, search.upper)),
+        status=status,
+        greedy=GreedyCampaign(greedy.dv_mps, greedy.missions, greedy.why, greedy_paths),
+        history=tuple(search.history),
+        columns=len(search.pool),
+        pricings=search.pricings,
+        seconds=seconds,
+        notes=tuple(search.notes),
+        gap_requested=search.gap_rel,
+    )
+
+
+def _mission_solution(search: _Campaign, column: Column, status: RunStatus):
+    launch = search.launches[column.launch]
+    nodes = MissionNodes.of(launch.catalog, launch.mission)
+    orbits = node_orbits(nodes.catalog, launch.mission)
+    note = (f"mission {launch.index + 1} of a campaign, launched on day {launch.day:g}: its "
+            "status is the campaign's; lower_bound_mps bounds this path's schedules")  # fmt: skip
+    return solution_of(nodes, launch.mission, orbits, column.nodes, column.schedule,
+                       status=status, lower_bound_mps=column.lower_mps,
+                       backend="+".join(sorted(search.backends)) or search.solver.backend,
+                       notes=(note,), model_size={"launch_day": launch.day},
+                       timings={})  # fmt: skip

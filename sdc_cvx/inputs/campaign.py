@@ -1,0 +1,230 @@
+"""Campaign parameters: K missions launched on given days, each debris removed at most once.
+
+A removal programme (the paper's motivation, Part I: about five large debris a year, for
+years) is a campaign: mission k is an ordinary :class:`~sdc_cvx.inputs.mission.Mission`
+that starts on its launch day ``d_k`` (days after the catalog's start date, the same
+day 0 as a single mission), with every debris' RAAN carried to ``d_k`` by its own J2
+rate.  Missions may overlap in time (several vehicles).  No debris is removed twice;
+``must_remove`` debris are removed by some mission.  The campaign's cost is the sum of
+its missions' total ΔV (operations included).
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+   doi:10.1007/s10957-012-0130-6
+"""
+
+from __future__ import annotations
+
+import numbers
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from ..errors import MissionError
+from .mission import MAX_TMAX_DAYS, Mission
+
+DEFAULT_PERIOD_DAYS = 365.25
+"""Days between two launches of ``Campaign.yearly`` (one a year)."""
+MAX_LAUNCH_DAY = MAX_TMAX_DAYS
+"""The last launch day allowed [days after the start]: 10 years (the model leaves out
+drag and the debris' own decay, which change the orbits over longer spans)."""
+
+
+@dataclass(frozen=True)
+class Campaign:
+    """K missions on given launch days, from one catalog (``docs/design.md`` §10).
+
+    Build it with :meth:`of` (every mission from one :class:`Mission`, with per-launch
+    ``n`` and ``tmax_days``) or :meth:`yearly`; the constructor takes one mission per
+    launch.
+
+    Parameters
+    ----------
+    launch_days : tuple of float
+        Launch day of each mission [days after the catalog's start], increasing.
+    missions : tuple of Mission
+        The mission flown from each launch day (its ``tmax_days`` counts from it).
+    must_remove : tuple of str
+        Debris ids that some mission must remove.
+
+    Raises
+    ------
+    MissionError
+        Launch days not increasing, out of [0, 10 years], a count that does not match,
+        or a mission option that a campaign cannot honour per mission (``must_include``
+        and ``first``: a debris is removed once; use ``must_remove``).
+    """
+
+    launch_days: tuple[float, ...]
+    missions: tuple[Mission, ...]
+    must_remove: tuple[str, ...] = ()
+
+    def __post_init__(self):
+        if isinstance(self.launch_days, numbers.Real):
+            object.__setattr__(self, "launch_days", (self.launch_days,))
+        if isinstance(self.must_remove, str):
+            raise MissionError(
+                f"campaign: must_remove must be a list of debris ids, got the string "
+                f"{self.must_remove!r} (write [{self.must_remove!r}])"
+            )
+        object.__setattr__(self, "launch_days", tuple(self.launch_days))
+        object.__setattr__(self, "missions", tuple(self.missions))
+        object.__setattr__(self, "must_remove", tuple(str(k) for k in self.must_remove))
+        problems = list(self._problems())
+        if problems:
+            raise MissionError("invalid campaign: " + "; ".join(problems))
+
+    def _problems(self):
+        days = self.launch_days
+        if not days:
+            yield "launch_days must name at least one launch day"
+            return
+        bad = [d for d in days if not _is_real(d) or not 0 <= d <= MAX_LAUNCH_DAY]
+        if bad:
+            yield (
+                f"launch_days must be numbers in [0, {MAX_LAUNCH_DAY:g}] days (10 years: "
+                f"the model leaves out drag and decay), got {list(bad)}"
+            )
+            return
+        if any(b <= a for a, b in zip(days[:-1], days[1:], strict=True)):
+            yield f"launch_days must increase strictly, got {list(days)}"
+        if len(self.missions) != len(days):
+            yield f"{len(days)} launch days but {len(self.missions)} missions"
+        for k, mission in enumerate(self.missions, start=1):
+            if not isinstance(mission, Mission):
+                yield f"mission {k} must be a Mission, got {type(mission).__name__}"
+                continue
+            if mission.must_include:
+                yield (
+                    f"mission {k}: must_include is a single mission's option; a campaign "
+                    "removes each debris once: use must_remove"
+                )
+            if mission.first is not None:
+                yield f"mission {k}: first cannot be set in a campaign (use injection)"
+        if len(set(self.must_remove)) != len(self.must_remove):
+            yield f"must_remove names a debris twice: {list(self.must_remove)}"
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def of(cls, launch_days: Sequence[float], mission: Mission | None = None, *,
+           n: int | Sequence[int] | None = None,
+           tmax_days: float | Sequence[float] | None = None,
+           must_remove: Sequence[str] = ()) -> Campaign:  # fmt: skip
+        """One mission per launch day, each ``mission`` with its own ``n`` and ``tmax_days``.
+
+        Parameters
+        ----------
+        launch_days : sequence of float
+            [days after the catalog's start].
+        mission : Mission, optional
+            Every mission's parameters (default ``Mission()``).
+        n, tmax_days : int / float, or a sequence with one per launch, optional
+            Debris per mission and duration limit [days]; default ``mission``'s.
+        must_remove : sequence of str
+        """
+        mission = Mission() if mission is None else mission
+        days = (launch_days,) if isinstance(launch_days, numbers.Real) else tuple(launch_days)
+        counts = _per_launch("n", n, mission.n, len(days))
+        limits = _per_launch("tmax_days", tmax_days, mission.tmax_days, len(days))
+        try:
+            missions = tuple(mission.replace(n=c, tmax_days=t)
+                             for c, t in zip(counts, limits, strict=True))  # fmt: skip
+        except MissionError as err:
+            raise MissionError(f"invalid campaign: {err}") from None
+        return cls(days, missions, tuple(must_remove))
+
+    @classmethod
+    def yearly(cls, missions: int, mission: Mission | None = None, *,
+               first_launch_day: float = 0.0, period_days: float = DEFAULT_PERIOD_DAYS,
+               **options) -> Campaign:  # fmt: skip
+        """``missions`` launches ``period_days`` apart from ``first_launch_day``.
+
+        Other keywords (``n``, ``tmax_days``, ``must_remove``) as in :meth:`of`.
+        """
+        if isinstance(missions, bool) or not isinstance(missions, numbers.Integral) \
+                or missions < 1:  # fmt: skip
+            raise MissionError(f"invalid campaign: missions must be an integer >= 1, "
+                               f"got {missions!r}")  # fmt: skip
+        if not (_is_real(period_days) and period_days > 0):
+            raise MissionError(f"invalid campaign: period_days must be > 0, got {period_days!r}")
+        if not _is_real(first_launch_day):
+            raise MissionError(
+                f"invalid campaign: first_launch_day must be a number, got {first_launch_day!r}"
+            )
+        days = [first_launch_day + k * period_days for k in range(missions)]
+        return cls.of(days, mission, **options)
+
+    # ------------------------------------------------------------------ use
+    def __len__(self) -> int:
+        return len(self.launch_days)
+
+    @property
+    def debris_removed(self) -> int:
+        """Debris removed by the whole campaign (the sum of the missions' n)."""
+        return sum(m.n for m in self.missions)
+
+    def check_candidates(self, ids) -> None:
+        """Raise :class:`MissionError` if the campaign cannot fit the catalog's ``ids``.
+
+        Each mission's own check, ``must_remove`` ids that exist and are not excluded
+        from every mission, and enough candidates for all the missions together.
+        """
+        ids = [str(k) for k in ids]
+        known = set(ids)
+        problems = []
+        for k, mission in enumerate(self.missions, start=1):
+            try:
+                mission.check_candidates(ids)
+            except MissionError as err:
+                problems.append(f"mission {k} (launch day {self.launch_days[k - 1]:g}): {err}")
+        unknown = [d for d in self.must_remove if d not in known]
+        if unknown:
+            problems.append(f"must_remove names debris not in the catalog: {', '.join(unknown)}")
+        nowhere = [d for d in self.must_remove if d in known
+                   and all(d in m.exclude for m in self.missions)]  # fmt: skip
+        if nowhere:
+            problems.append(f"must_remove debris excluded from every mission: {', '.join(nowhere)}")
+        if len(self.must_remove) > self.debris_removed:
+            problems.append(
+                f"must_remove names {len(self.must_remove)} debris but the missions remove "
+                f"{self.debris_removed} in all"
+            )
+        usable = known - set.intersection(*(set(m.exclude) for m in self.missions))
+        if self.debris_removed > len(usable):
+            problems.append(
+                f"the missions remove {self.debris_removed} debris in all "
+                f"({' + '.join(str(m.n) for m in self.missions)}) but the catalog has "
+                f"{len(usable)} candidates: each debris is removed once"
+            )
+        if problems:
+            raise MissionError("; ".join(problems))
+
+    def to_dict(self) -> dict:
+        """Plain dict: launch days, ``n`` and ``tmax_days`` per mission, must_remove, and
+        each mission's parameters."""
+        return {
+            "launch_days": list(self.launch_days),
+            "n": [m.n for m in self.missions],
+            "tmax_days": [m.tmax_days for m in self.missions],
+            "must_remove": list(self.must_remove),
+            "missions": [m.to_dict() for m in self.missions],
+        }
+
+
+def _per_launch(name, value, default, count):
+    if value is None:
+        return [default] * count
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return [value] * count
+    values = list(value)
+    if len(values) != count:
+        raise MissionError(
+            f"invalid campaign: {name} has {len(values)} values for {count} launch days "
+            f"(give one per launch, or one number for all), got {values}"
+        )
+    return values
+
+
+def _is_real(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)

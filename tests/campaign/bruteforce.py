@@ -1,0 +1,90 @@
+"""An independent brute force of a campaign's optimum, for the campaign's tests.
+
+For each launch, the catalog's RAANs are carried to the launch day here, with the J2
+rate re-derived from the paper (Eq. 7 for the debris' own a, e, I: nothing of
+``Catalog.advanced``); every ordered path of the launch's n debris is then optimised by
+the mission brute force (``tests/planner/bruteforce.py``: a grid over every leg's drift
+orbit with the true physics, each plan replayed).  The best order of each debris set is
+kept per launch, and every choice of one set per launch with no debris twice (and every
+``must_remove`` debris in some set) is enumerated: the cheapest is the campaign's
+optimum, up to the mission brute force's grid error (0.05 m/s per mission).
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from sdc_cvx import Catalog
+from tests.planner.bruteforce import Enumeration
+
+J2 = 1.08263e-3
+MU = 3.986e14
+R_T = 6378137.0
+DAY = 86400.0
+GRID = {2: (2, 2), 3: (1001, 101)}
+"""Radii of the middle legs and of their zoom, by n (those of test_certified_property)."""
+
+
+def raan_rate_deg_per_day(a_km, e, inc_deg):
+    """Eq. 7: dOmega/dt = -3/2 J2 sqrt(mu) R_T^2 cos I / (a^3.5 (1 - e^2)^2) [deg/day]."""
+    a = np.asarray(a_km, dtype=float) * 1e3
+    rate = (
+        -1.5
+        * J2
+        * np.sqrt(MU)
+        * R_T**2
+        * np.cos(np.radians(inc_deg))
+        / (a**3.5 * (1.0 - np.asarray(e, dtype=float) ** 2) ** 2)
+    )
+    return np.degrees(rate) * DAY
+
+
+def advanced(catalog: Catalog, days: float) -> Catalog:
+    """The catalog ``days`` later (RAANs by Eq. 7, as re-derived above)."""
+    f = catalog.frame
+    raan = np.mod(
+        f["raan_deg"] + raan_rate_deg_per_day(f["a_km"], f["e"], f["inc_deg"]) * days, 360.0
+    )
+    frame = pd.DataFrame(
+        {"id": f["id"], "a_km": f["a_km"], "e": f["e"], "inc_deg": f["inc_deg"], "raan_deg": raan}
+    )
+    return Catalog.from_frame(frame)
+
+
+@dataclass(frozen=True)
+class CampaignOptimum:
+    dv_mps: float
+    sets: tuple[frozenset, ...]  # debris ids removed by each launch
+    per_launch: tuple[dict, ...]  # launch -> {frozenset of ids: best dv}
+
+
+def campaign_optimum(
+    catalog: Catalog, launch_days, ns, tmaxes, rule="table3", must_remove=()
+) -> CampaignOptimum:
+    per_launch = []
+    for day, n, tmax in zip(launch_days, ns, tmaxes, strict=True):
+        moved = advanced(catalog, day)
+        middle, zoom = GRID[n]
+        en = Enumeration(moved, n, tmax, middle_count=middle, zoom_count=zoom, walk=8)
+        best: dict = {}
+        for plan in en.plans[rule]:
+            if np.isfinite(plan.dv):
+                key = frozenset(en.ids(plan))
+                best[key] = min(best.get(key, np.inf), plan.dv)
+        per_launch.append(best)
+    must = frozenset(str(k) for k in must_remove)
+    value, sets = np.inf, ()
+    options = [sorted(b.items(), key=lambda kv: kv[1]) for b in per_launch]
+    for choice in itertools.product(*options):
+        chosen = [c[0] for c in choice]
+        union = frozenset().union(*chosen)
+        if len(union) != sum(len(c) for c in chosen) or not must <= union:
+            continue
+        total = sum(c[1] for c in choice)
+        if total < value:
+            value, sets = total, tuple(chosen)
+    return CampaignOptimum(float(value), sets, tuple(per_launch))
