@@ -22,6 +22,7 @@ import shutil
 import tempfile
 from collections.abc import Callable
 from datetime import datetime
+from functools import partial
 from pathlib import Path
 from typing import BinaryIO
 
@@ -84,11 +85,14 @@ def new_run_folder(parent: Path | str = ".", prefix: str = "sdc_run_") -> Path:
     raise FileExistsError(f"cannot create a new run folder under {parent}")
 
 
-def out_folder_problem(folder: Path | str) -> str | None:
+def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
+                       kind: str = "run folder") -> str | None:  # fmt: skip
     """Why ``folder`` cannot take a run folder, or None (checked before any solve).
 
     Refused: a path inside a file, a file, a non-empty folder that is not an earlier
-    run folder (see the module docstring), and a place the user cannot write to.
+    run folder (one holding one of ``markers``; see the module docstring), and a place
+    the user cannot write to.  ``kind`` names the folder in the message (a campaign
+    folder has markers of its own).
     """
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
@@ -99,11 +103,11 @@ def out_folder_problem(folder: Path | str) -> str | None:
     if not ancestor.is_dir():
         return f"{folder} is inside {ancestor}, which is a file, not a folder"
     if folder.is_dir() and any(folder.iterdir()):
-        if not any((folder / name).exists() for name in RUN_FOLDER_MARKERS):
+        if not any((folder / name).exists() for name in markers):
             return (
-                f"{folder} is not empty and is not an earlier run folder (no "
-                f"{', '.join(RUN_FOLDER_MARKERS)}); choose a new or empty folder (an earlier "
-                "run folder is replaced whole)"
+                f"{folder} is not empty and is not an earlier {kind} (no "
+                f"{', '.join(markers)}); choose a new or empty folder (an earlier "
+                f"{kind} is replaced whole)"
             )
         if not os.access(folder.parent, os.W_OK | os.X_OK):
             return f"cannot replace {folder}: {folder.parent} is not writable"
@@ -203,8 +207,22 @@ def write_run(
     OSError
         The folder cannot be written.
     """
+    return write_staged(folder, partial(_write_files, solution=solution, edges=edges,
+                                        scenario_toml=scenario_toml, catalog=catalog,
+                                        formats=formats, log=log))  # fmt: skip
+
+
+def write_staged(folder: Path | str, fill: Callable[[Path], list[str]], *,
+                 markers=RUN_FOLDER_MARKERS, kind: str = "run folder") -> list[Path]:  # fmt: skip
+    """Write a folder aside with ``fill(stage)`` and swap it in at once.
+
+    The one staged writer of sdc_cvx's folders (a run folder, a campaign folder): the
+    policy of :func:`out_folder_problem` (with ``markers`` and ``kind``), a hidden
+    ``.NAME.*.partial`` folder next to ``folder`` filled by ``fill``, which returns the
+    names it wrote, then one rename.  A failure or a kill leaves the old folder whole.
+    """
     folder = Path(folder)
-    problem = out_folder_problem(folder)
+    problem = out_folder_problem(folder, markers, kind)
     if problem is not None:
         raise FileExistsError(problem)
     folder.parent.mkdir(parents=True, exist_ok=True)
@@ -212,7 +230,7 @@ def write_run(
     stage = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial"))
     try:
         os.chmod(stage, file_mode(0o777))
-        names = _write_files(stage, solution, edges, scenario_toml, catalog, formats, log)
+        names = fill(stage)
         _pause_before_swap()
         _swap_in(stage, folder)
     except BaseException:
@@ -221,7 +239,7 @@ def write_run(
     return [folder / name for name in names]
 
 
-def _write_files(stage, solution, edges, scenario_toml, catalog, formats, log) -> list[str]:
+def _write_files(stage, *, solution, edges, scenario_toml, catalog, formats, log) -> list[str]:
     files = {
         "legs.csv": legs_table(solution).to_csv(index=False, float_format=CSV_FLOAT_FORMAT),
         "iterations.csv": iterations_table(solution).to_csv(

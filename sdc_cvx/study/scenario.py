@@ -26,6 +26,17 @@ A scenario file has four tables, each optional::
     names = ["cosmos 2251*"]   # case-insensitive
     exclude_ids = ["4350?"]
 
+A fifth table, ``[campaign]``, makes the scenario a removal campaign (``python -m sdc_cvx
+campaign``): K missions launched on given days, every ``[mission]`` key the default of
+each mission::
+
+    [campaign]
+    launch_days = [0.0, 365.25, 730.5]   # or: missions = 3, first_launch_day = 0,
+                                         #     period_days = 365.25
+    n = [5, 5, 4]              # per mission, or one number [mission.n]
+    tmax_days = 365.25         # per mission, or one number [mission.tmax_days]
+    must_remove = ["43211"]    # removed by some mission [none]
+
 A missing ``[catalog]`` table, or one without ``path``, means the paper's Table 5 bundled
 with the package (which has no epochs: ``catalog.start`` needs a path).  Missing keys keep
 the defaults of :class:`Mission` and :class:`SolverOptions` (the paper's case, HiGHS) and
@@ -54,6 +65,7 @@ from datetime import UTC, date, datetime, time
 from pathlib import Path
 
 from ..errors import ScenarioError
+from ..inputs.campaign import DEFAULT_PERIOD_DAYS, Campaign
 from ..inputs.catalog import Catalog
 from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
@@ -145,22 +157,28 @@ class _Limit(float):
     """Type of a number that may be ``inf`` (``selection.max_eccentricity``: no limit)."""
 
 
-_TABLES = ("catalog", "mission", "solver", "selection")
+_TABLES = ("catalog", "mission", "solver", "selection", "campaign")
 _CATALOG_KEYS = ("path", "format", "start")
 _MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
 _SELECTION_KEYS = tuple(f.name for f in dataclasses.fields(Selection))
+_CAMPAIGN_KEYS = ("launch_days", "missions", "first_launch_day", "period_days", "n", "tmax_days",
+                  "must_remove")  # fmt: skip
 _KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS,
-         "selection": _SELECTION_KEYS}  # fmt: skip
+         "selection": _SELECTION_KEYS, "campaign": _CAMPAIGN_KEYS}  # fmt: skip
 _TYPES = {
     "catalog": {"path": str, "format": str, "start": object},  # start: checked by _start
     "mission": typing.get_type_hints(Mission),
     "solver": typing.get_type_hints(SolverOptions),
     "selection": typing.get_type_hints(Selection) | {"max_eccentricity": _Limit | None},
+    "campaign": {"launch_days": object, "missions": int, "first_launch_day": float,
+                 "period_days": float, "n": object, "tmax_days": object,
+                 "must_remove": tuple[str, ...]},  # launch_days, n, tmax_days: _campaign
 }
 _UNSET = {"catalog": "the latest epoch in the catalog", "mission": "none",
           "solver": "no limit / backend default",
-          "selection": f"no filter; max_eccentricity {DEFAULT_MAX_ECCENTRICITY:g}"}  # fmt: skip
+          "selection": f"no filter; max_eccentricity {DEFAULT_MAX_ECCENTRICITY:g}",
+          "campaign": "none"}  # fmt: skip
 """What a key left out of each table means (comments of :meth:`Scenario.to_toml`)."""
 
 
@@ -184,6 +202,9 @@ class Scenario:
         of the catalog (or none, for a catalog without epochs).
     selection : Selection
         Candidate filters; the CLI ``run`` applies them to the catalog.
+    campaign : Campaign or None
+        The ``[campaign]`` table (``python -m sdc_cvx campaign``), its missions built
+        from ``mission``; None for a single mission.
     source : Path or None
         The scenario file read, if any.  Not compared: two scenarios with the same
         content are equal wherever they were read from.
@@ -195,6 +216,7 @@ class Scenario:
     solver: SolverOptions = field(default_factory=SolverOptions)
     catalog_start: datetime | None = None
     selection: Selection = field(default_factory=Selection)
+    campaign: Campaign | None = None
     source: Path | None = field(default=None, compare=False)
 
     # ------------------------------------------------------------------ reading
@@ -274,6 +296,9 @@ class Scenario:
             data["catalog"]["start"] = self.catalog_start.isoformat()
         if self.selection.to_dict():
             data["selection"] = self.selection.to_dict()
+        if self.campaign is not None:
+            data["campaign"] = {key: self.campaign.to_dict()[key]
+                                for key in ("launch_days", "n", "tmax_days", "must_remove")}
         return data
 
     def to_toml(self) -> str:
@@ -361,7 +386,7 @@ def _build(data: Mapping, where: str, *, base: Path, source: Path | None) -> Sce
                 hint = f" (did you mean {owner[0]}.{name}?)" if owner else ""
                 problems.append(
                     f"key {name!r} outside a table{hint}; "
-                    f"keys go in [catalog], [mission], [solver] or [selection]"
+                    f"keys go in [catalog], [mission], [solver], [selection] or [campaign]"
                 )
         elif not isinstance(table, Mapping):
             problems.append(f"{name} must be a table ([{name}]), got {_kind(table)}")
@@ -373,10 +398,53 @@ def _build(data: Mapping, where: str, *, base: Path, source: Path | None) -> Sce
     mission = _make(Mission, "mission", tables.get("mission", {}), problems)
     solver = _make(SolverOptions, "solver", tables.get("solver", {}), problems)
     selection = _make(Selection, "selection", tables.get("selection", {}), problems)
+    campaign = None
+    if "campaign" in tables and mission is not None:
+        campaign = _campaign(tables["campaign"], mission, problems)
     if problems:
         raise ScenarioError.collect(where, problems)
     return Scenario(catalog_path, catalog_format, mission, solver, catalog_start=start,
-                    selection=selection, source=source)  # fmt: skip
+                    selection=selection, campaign=campaign, source=source)  # fmt: skip
+
+
+def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign | None:
+    """The ``[campaign]`` table as a :class:`Campaign` of ``mission``s (problems reported)."""
+    before = len(problems)
+    days = values.get("launch_days")
+    if days is not None and not (isinstance(days, list | tuple) and days
+                                 and all(_typed(d, float)[1] is None for d in days)):
+        problems.append(f"campaign.launch_days must be a non-empty array of numbers [days], "
+                        f"got {_show(days)}")  # fmt: skip
+    for key, kind, one, words in (("n", int, "an integer", "integers"),
+                                  ("tmax_days", float, "a number", "numbers")):  # fmt: skip
+        value = values.get(key)
+        if value is None or _typed(value, kind)[1] is None:
+            continue
+        if not (isinstance(value, list | tuple) and all(_typed(v, kind)[1] is None
+                                                        for v in value)):  # fmt: skip
+            problems.append(f"campaign.{key} must be {one} or an array of {words} (one per "
+                            f"launch), got {_show(value)}")  # fmt: skip
+    yearly = [key for key in ("missions", "first_launch_day", "period_days") if key in values]
+    if days is not None and yearly:
+        problems.append(f"campaign: give launch_days, or missions (with first_launch_day and "
+                        f"period_days), not both; got launch_days and {', '.join(yearly)}")
+    elif days is None and "missions" not in values:
+        problems.append("campaign: needs launch_days = [day, ...] or missions = K (launches "
+                        "period_days apart from first_launch_day)")
+    if len(problems) > before:
+        return None
+    options = {"n": values.get("n"), "tmax_days": values.get("tmax_days"),
+               "must_remove": values.get("must_remove", ())}  # fmt: skip
+    try:
+        if days is not None:
+            return Campaign.of([float(d) for d in days], mission, **options)
+        return Campaign.yearly(values["missions"], mission,
+                               first_launch_day=values.get("first_launch_day", 0.0),
+                               period_days=values.get("period_days", DEFAULT_PERIOD_DAYS),
+                               **options)  # fmt: skip
+    except MissionError as err:
+        problems.append("campaign: " + str(err).removeprefix("invalid campaign: "))
+        return None
 
 
 def _checked_table(table: str, values: Mapping, problems: list[str]) -> dict:

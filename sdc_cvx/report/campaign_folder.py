@@ -1,0 +1,139 @@
+"""Writing a campaign's results to a folder, atomically (as a run folder is written).
+
+A campaign folder::
+
+    campaign.json      status, certified, total_dv_mps, lower_bound_mps, gap_rel,
+                       greedy_dv_mps, start_utc, missions [{launch_day, path,
+                       total_dv_mps, folder}], and more (CampaignSolution.to_dict)
+    missions.csv       one row per mission
+    history.csv        the bound and the plan after each step of the search
+    campaign.log       the progress of the search (if given)
+    scenario.toml      the scenario as used (if given)
+    timeline.png, raan.png, dv.png, bound.png   the figures
+    mission_01/ ...    one ordinary run folder per mission: its solution.json has the
+                       mission's own start date (the campaign's plus its launch day) and
+                       its legs from it
+
+The whole folder is written aside and swapped in at once
+(:func:`~sdc_cvx.report.run_folder.write_staged`): an earlier campaign folder (one with
+``campaign.json``, ``campaign.log`` or ``missions.csv``) is replaced whole, any other
+non-empty folder is refused.  An infeasible campaign gets a folder too, with
+``campaign.json`` saying so and why (:func:`write_infeasible_campaign`).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_atomic, write_staged
+
+CAMPAIGN_FOLDER_MARKERS = ("campaign.json", "campaign.log", "missions.csv")
+"""A folder holding one of these is an earlier campaign folder, which is replaced."""
+KIND = "campaign folder"
+
+
+def write_campaign(folder, solution, *, formats=("png",), scenario_toml: str | None = None,
+                   log: str | None = None, edges: bool = True) -> list[Path]:  # fmt: skip
+    """Write the campaign folder of ``solution`` (a ``CampaignSolution``), atomically.
+
+    Parameters
+    ----------
+    folder : path-like
+    solution : CampaignSolution
+    formats : tuple of str
+        Figure formats; empty for no figures (the missions' folders included).
+    scenario_toml, log : str, optional
+        ``scenario.toml`` and ``campaign.log``.
+    edges : bool
+        Write each mission's ``edges.csv`` (the pre-optimised edge table of its launch).
+
+    Returns
+    -------
+    list of Path
+
+    Raises
+    ------
+    FileExistsError
+        ``folder`` is refused.
+    OSError
+        The folder cannot be written.
+    """
+
+    def fill(stage: Path) -> list[str]:
+        names = []
+        mission_files = []
+        for entry, mission in zip(solution.to_dict()["missions"], solution.missions, strict=True):
+            sub = stage / entry["folder"]
+            sub.mkdir()
+            table = None
+            if edges:
+                from ..network.edges import preoptimize
+
+                table = preoptimize(mission.catalog, mission.mission,
+                                    departure_day=mission.mission.deorbit_days)  # fmt: skip
+            written = _write_files(sub, solution=mission, edges=table, scenario_toml=None,
+                                   catalog=mission.catalog, formats=tuple(formats),
+                                   log=None)  # fmt: skip
+            mission_files += [f"{entry['folder']}/{name}" for name in written]
+        files = {
+            "missions.csv": solution.missions_frame().to_csv(
+                index=False, float_format=CSV_FLOAT_FORMAT),
+            "history.csv": solution.history_frame().to_csv(
+                index=False, float_format=CSV_FLOAT_FORMAT),
+        }  # fmt: skip
+        if scenario_toml is not None:
+            files["scenario.toml"] = scenario_toml
+        if log is not None:
+            files["campaign.log"] = log
+        for name, text in files.items():
+            write_atomic(stage / name, text)
+            names.append(name)
+        if formats:
+            from .campaign_plots import save_campaign_figures  # matplotlib when drawn
+
+            names += [p.name for p in save_campaign_figures(solution, stage, tuple(formats))]
+        write_atomic(stage / "campaign.json", solution.to_json())
+        return names + ["campaign.json"] + mission_files
+
+    return write_staged(folder, fill, markers=CAMPAIGN_FOLDER_MARKERS, kind=KIND)
+
+
+def write_infeasible_campaign(folder, reason: str, *, start_utc: str | None,
+                              campaign: dict | None = None, scenario_toml: str | None = None,
+                              log: str | None = None) -> list[Path]:  # fmt: skip
+    """A campaign folder for a proven infeasible campaign: ``campaign.json`` with status
+    ``infeasible`` (certified: the proof is the certified search's), the reason, no
+    missions; ``campaign.log`` and ``scenario.toml`` when given."""
+    data = {
+        "status": "infeasible",
+        "certified": True,
+        "total_dv_mps": None,
+        "lower_bound_mps": None,
+        "gap_mps": None,
+        "gap_rel": None,
+        "greedy_dv_mps": None,
+        "start_utc": start_utc,
+        "missions": [],
+        "campaign": campaign,
+        "reason": reason,
+    }
+
+    def fill(stage: Path) -> list[str]:
+        files = {"campaign.json": json.dumps(data, indent=2, allow_nan=False)}
+        if scenario_toml is not None:
+            files["scenario.toml"] = scenario_toml
+        if log is not None:
+            files["campaign.log"] = log
+        for name, text in files.items():
+            write_atomic(stage / name, text)
+        return list(files)
+
+    return write_staged(folder, fill, markers=CAMPAIGN_FOLDER_MARKERS, kind=KIND)
+
+
+def campaign_folder_problem(folder) -> str | None:
+    """Why ``folder`` cannot take a campaign folder, or None (checked before the search)."""
+    from .run_folder import out_folder_problem
+
+    return out_folder_problem(Path(folder), CAMPAIGN_FOLDER_MARKERS, KIND)

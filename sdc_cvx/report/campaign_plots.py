@@ -1,0 +1,185 @@
+"""Figures of a removal campaign: timeline, RAANs, ΔV per mission, bound and plan.
+
+Each function takes a campaign solution (:class:`~sdc_cvx.campaign.result.
+CampaignSolution`: its ``missions``, ``launch_days``, ``catalog``, ``history``,
+``greedy``) and returns a :class:`matplotlib.figure.Figure` built with the
+object-oriented API (no pyplot), so it works headless; :func:`save_campaign_figures`
+writes them atomically.  Days count from the campaign's start (day 0 of the catalog);
+each mission's legs count from its own launch day.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+from pathlib import Path
+
+import numpy as np
+from matplotlib import colormaps
+from matplotlib.figure import Figure
+
+from ..physics.orbits import SECONDS_PER_DAY, raan_rate
+from .run_folder import write_atomic
+
+CAMPAIGN_FIGURE_NAMES = ("timeline", "raan", "dv", "bound")
+"""File stems written by :func:`save_campaign_figures`, in order."""
+FIGURE_SIZE = (9.0, 4.8)
+_CANDIDATE_COLOR = "#c7c7c7"
+_MAX_LABELLED = 12
+"""Missions whose debris are labelled by name on the timeline (more: markers only)."""
+
+
+def _color(k: int):
+    return colormaps["tab10"](k % 10)
+
+
+def _figure():
+    fig = Figure(figsize=FIGURE_SIZE, layout="constrained")
+    return fig, fig.add_subplot()
+
+
+def rendezvous_days(solution) -> list[list[tuple[str, float]]]:
+    """Per mission, each debris and the day it is reached [days after the campaign start]
+    (the first debris at the launch day)."""
+    out = []
+    for day, mission in zip(solution.launch_days, solution.missions, strict=True):
+        if not mission.legs:
+            out.append([(mission.path[0], day)])
+            continue
+        stops = [(mission.legs[0].from_id, day + mission.legs[0].departure_day)]
+        stops += [(leg.to_id, day + leg.departure_day + leg.duration_days)
+                  for leg in mission.legs]  # fmt: skip
+        out.append(stops)
+    return out
+
+
+def plot_timeline(solution) -> Figure:
+    """One row per mission: launch to end, each debris at its rendezvous date."""
+    fig, ax = _figure()
+    stops = rendezvous_days(solution)
+    for k, (day, mission, row) in enumerate(zip(solution.launch_days, solution.missions, stops,
+                                                strict=True)):  # fmt: skip
+        end = day + mission.total_duration_days
+        ax.plot([day, end], [k, k], color=_color(k), linewidth=6, alpha=0.35,
+                solid_capstyle="butt")  # fmt: skip
+        ax.plot([d for _, d in row], [k] * len(row), "o", color=_color(k), markersize=6)
+        if len(solution.missions) <= _MAX_LABELLED:
+            for n, (name, d) in enumerate(row):
+                ax.annotate(name, (d, k), textcoords="offset points",
+                            xytext=(0, 8 if n % 2 == 0 else -14), ha="center", fontsize=8)
+        ax.annotate(f"{mission.total_dv_mps:.0f} m/s", (end, k), textcoords="offset points",
+                    xytext=(6, -3), fontsize=8, color="#444444")  # fmt: skip
+    ax.set_yticks(range(len(solution.missions)),
+                  [f"mission {k + 1}" for k in range(len(solution.missions))])  # fmt: skip
+    ax.invert_yaxis()
+    ax.set_ylim(len(solution.missions) - 0.4, -0.6)
+    ax.set_xlabel("days after the campaign start")
+    ax.set_title(f"Campaign timeline: {solution.total_dv_mps:.1f} m/s in "
+                 f"{len(solution.missions)} missions")  # fmt: skip
+    ax.grid(axis="x", alpha=0.3)
+    return fig
+
+
+def plot_raan(solution) -> Figure:
+    """The RAAN of every candidate against time, each mission's debris marked where the
+    vehicle meets them (J2 rates from the catalog elements and the missions' J2)."""
+    fig, ax = _figure()
+    catalog = solution.catalog
+    j2 = solution.missions[0].mission.j2
+    rate = np.degrees(raan_rate(catalog.a_m, catalog.e, catalog.inc_rad, j2=j2)) * SECONDS_PER_DAY
+    stops = rendezvous_days(solution)
+    end = max(d for row in stops for _, d in row)
+    days = np.linspace(0.0, max(end, 1.0), 200)
+    raan = np.mod(np.asarray(catalog.frame["raan_deg"])[:, None] + rate[:, None] * days, 360.0)
+    wrapped = np.where(np.abs(np.diff(raan, axis=1, prepend=raan[:, :1])) > 180.0, np.nan, raan)
+    for row in wrapped:
+        ax.plot(days, row, color=_CANDIDATE_COLOR, linewidth=0.6)
+    index = {name: k for k, name in enumerate(catalog.ids)}
+    for k, row in enumerate(stops):
+        names = [name for name, _ in row if name in index]
+        when = np.array([d for name, d in row if name in index])
+        at = np.mod(np.asarray(catalog.frame["raan_deg"])[[index[n] for n in names]]
+                    + rate[[index[n] for n in names]] * when, 360.0)  # fmt: skip
+        ax.plot(when, at, "o-", color=_color(k), markersize=5, linewidth=1.2,
+                label=f"mission {k + 1}")  # fmt: skip
+    ax.set_xlabel("days after the campaign start")
+    ax.set_ylabel("RAAN [deg]")
+    ax.set_ylim(0, 360)
+    ax.set_title(f"RAANs of the {len(catalog)} candidates (grey) and the debris each mission "
+                 "removes")  # fmt: skip
+    ax.legend(fontsize=8, loc="upper right", ncols=min(5, len(stops)))
+    return fig
+
+
+def plot_dv(solution) -> Figure:
+    """ΔV of each mission: transfers and operations, with greedy's missions beside."""
+    fig, ax = _figure()
+    k = np.arange(len(solution.missions))
+    transfers = [m.transfers_dv_mps for m in solution.missions]
+    operations = [m.operations_dv_mps for m in solution.missions]
+    width = 0.38
+    ax.bar(k - width / 2, transfers, width, color=[_color(i) for i in k], label="transfers")
+    if any(operations):
+        ax.bar(k - width / 2, operations, width, bottom=transfers, color="#444444", alpha=0.5,
+               label="operations")  # fmt: skip
+    greedy = [c.dv_mps for c in solution.greedy.missions]
+    if greedy:
+        ax.bar(np.arange(len(greedy)) + width / 2, greedy, width, color="none",
+               edgecolor="#444444", hatch="//", label="greedy (one mission at a time)")
+    ax.set_xticks(k, [f"mission {i + 1}\nday {d:g}" for i, d in
+                      zip(k, solution.launch_days, strict=True)])  # fmt: skip
+    ax.set_ylabel("ΔV [m/s]")
+    greedy_text = (f"; greedy {solution.greedy.dv_mps:.1f} m/s"
+                   if solution.greedy.dv_mps is not None else "")  # fmt: skip
+    ax.set_title(f"ΔV per mission: total {solution.total_dv_mps:.1f} m/s (bound "
+                 f"{solution.lower_bound_mps:.1f}){greedy_text}")  # fmt: skip
+    ax.legend(fontsize=8)
+    ax.grid(axis="y", alpha=0.3)
+    return fig
+
+
+def plot_bound(solution) -> Figure:
+    """The proven lower bound and the best campaign against elapsed time, with the gap."""
+    fig, ax = _figure()
+    rows = [r for r in solution.history]
+    t = np.array([r["seconds"] for r in rows], dtype=float)
+    upper = np.array([r["upper_mps"] if r["upper_mps"] is not None else np.nan for r in rows],
+                     dtype=float)  # fmt: skip
+    lower = np.array([r["lower_mps"] if r["lower_mps"] is not None else np.nan for r in rows],
+                     dtype=float)  # fmt: skip
+    upper[~np.isfinite(upper)] = np.nan
+    lower[~np.isfinite(lower)] = np.nan
+    ax.step(t, upper, where="post", marker="o", color="#08519c", label="best campaign (plan)")
+    ax.step(t, lower, where="post", marker="s", color="#d62728", label="proven lower bound")
+    if solution.greedy.dv_mps is not None:
+        ax.axhline(solution.greedy.dv_mps, color="#444444", linestyle="--", linewidth=1,
+                   label=f"greedy {solution.greedy.dv_mps:.1f} m/s")  # fmt: skip
+    finite = np.r_[upper[np.isfinite(upper)], lower[np.isfinite(lower)]]
+    if finite.size:
+        span = max(finite.max() - finite.min(), 1.0)
+        top = finite.max() if solution.greedy.dv_mps is None else max(finite.max(),
+                                                                        solution.greedy.dv_mps)
+        ax.set_ylim(finite.min() - 0.1 * span, top + 0.1 * span)
+    ax.set_xlabel("elapsed [s]")
+    ax.set_ylabel("campaign ΔV [m/s]")
+    ax.set_title(f"Bound and plan: {solution.status}, gap {solution.gap_mps:.2f} m/s "
+                 f"({100 * solution.gap_rel:.2f} %)")  # fmt: skip
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def campaign_figures(solution) -> dict[str, Figure]:
+    """The four figures by name (:data:`CAMPAIGN_FIGURE_NAMES`)."""
+    return {"timeline": plot_timeline(solution), "raan": plot_raan(solution),
+            "dv": plot_dv(solution), "bound": plot_bound(solution)}  # fmt: skip
+
+
+def save_campaign_figures(solution, folder, formats=("png",), dpi: int = 150) -> list[Path]:
+    """Write the four figures as ``{name}.{fmt}`` in ``folder``, each atomically."""
+    written = []
+    for name, fig in campaign_figures(solution).items():
+        for fmt in formats:
+            target = Path(folder) / f"{name}.{fmt}"
+            write_atomic(target, partial(fig.savefig, format=fmt, dpi=dpi))
+            written.append(target)
+    return written
