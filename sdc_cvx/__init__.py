@@ -6,7 +6,8 @@ Data flow: :class:`Catalog` + :class:`Mission` -> :func:`preoptimize` (edge tabl
 The names below are imported when first used (a module-level ``__getattr__``), so
 ``import sdc_cvx`` loads neither CVXPY nor matplotlib nor the sweep machinery.  The
 subpackages follow the pipeline: ``physics``, ``inputs``, ``network``, ``milp``,
-``planner``, ``solution``, ``study``, ``report`` (see the README's "Layout").
+``planner``, ``solution``, ``study``, ``report``, ``campaign`` (see the README's
+"Layout").
 
 Equation, table and part numbers are those of Cerf's paper [1]_; the design
 rationale is in ``docs/design.md``.
@@ -24,6 +25,8 @@ import importlib
 from typing import TYPE_CHECKING
 
 _EXPORTS = {
+    "Campaign": "sdc_cvx.inputs.campaign",
+    "CampaignSolution": "sdc_cvx.campaign.result",
     "Catalog": "sdc_cvx.inputs.catalog",
     "CatalogError": "sdc_cvx.errors",
     "EdgeTable": "sdc_cvx.network.edges",
@@ -37,11 +40,14 @@ _EXPORTS = {
     "plot_sweep": "sdc_cvx.study.figure",
     "preoptimize": "sdc_cvx.network.edges",
     "solve": "sdc_cvx.planner.api",
+    "solve_campaign": "sdc_cvx.campaign.search",
     "sweep": "sdc_cvx.study.runner",
 }
 """Each public name and the module it comes from."""
 
 __all__ = [
+    "Campaign",
+    "CampaignSolution",
     "Catalog",
     "CatalogError",
     "EdgeTable",
@@ -55,12 +61,16 @@ __all__ = [
     "plot_sweep",
     "preoptimize",
     "solve",
+    "solve_campaign",
     "sweep",
 ]
 __version__ = "0.1.0"
 
 if TYPE_CHECKING:
+    from .campaign.result import CampaignSolution
+    from .campaign.search import solve_campaign
     from .errors import CatalogError, MissionError, MissionInfeasible, SolverFailure
+    from .inputs.campaign import Campaign
     from .inputs.catalog import Catalog
     from .inputs.mission import Mission
     from .milp.types import SolverOptions

@@ -132,7 +132,7 @@ class Campaign:
                              for c, t in zip(counts, limits, strict=True))  # fmt: skip
         except MissionError as err:
             raise MissionError(f"invalid campaign: {err}") from None
-        return cls(days, missions, tuple(must_remove))
+        return cls(days, missions, must_remove)
 
     @classmethod
     def yearly(cls, missions: int, mission: Mission | None = None, *,
