@@ -133,7 +133,8 @@ class Pricing:
 
 
 def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
-          tol_mps: float = 0.01, stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
+          tol_mps: float = 0.01, gap_rel: float = 0.0, stop_above_mps: float = np.inf,
+          ceiling_mps: float = -np.inf,
           time_limit_s: float | None = None, exclude=(), must_visit=(),
           seeds=()) -> Pricing:  # fmt: skip
     """The cheapest missions of ``launch`` with ``prices`` added to the debris' costs.
@@ -145,8 +146,9 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
         Price of removing each catalog row [m/s] (default none); may be negative.
     solver : SolverOptions
         Backend of the search's relaxation MILPs.
-    tol_mps : float
-        Absolute gap the search closes [m/s].
+    tol_mps, gap_rel : float
+        Gap the search closes: ``max(tol_mps, gap_rel * plan)`` [m/s, -] (prices can make
+        the plan's value any number: the relative gap is for pricing without prices).
     stop_above_mps : float
         Stop once no mission can cost less than this under the prices [m/s] (the
         launch's dual: no column of negative reduced cost is left).
@@ -176,7 +178,7 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
         base, cost_mps=operations + extra,
         excluded=tuple(sorted(set(base.excluded) | {int(k) for k in exclude})),
         must_visit=tuple(sorted(set(base.must_visit) | {int(k) for k in must_visit})))  # fmt: skip
-    result = certify(orbits, search_nodes, a_low, a_high, solver=solver, gap_rel=0.0,
+    result = certify(orbits, search_nodes, a_low, a_high, solver=solver, gap_rel=gap_rel,
                      gap_abs_mps=tol_mps, time_limit_s=time_limit_s, seeds=seeds,
                      stop_above_mps=stop_above_mps, ceiling_mps=ceiling_mps,
                      names=nodes.catalog.ids)  # fmt: skip

@@ -144,6 +144,11 @@ class _Campaign:
         self.pricings += len(out)
         return out
 
+    def unpriced(self, **options) -> dict:
+        """Options of a pricing without prices (a launch alone, greedy): the mission's own
+        gap, halved (its plan is a column and greedy's value, not a bound)."""
+        return dict(tol_mps=PATH_TOL_MPS, gap_rel=self.gap_rel / 2, **options)
+
     def master_plan(self) -> None:
         """The integer master over the pool: the plan, if it improves."""
         plan = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
@@ -158,7 +163,7 @@ class _Campaign:
         """Step 1: each launch priced alone; infeasible launches end the campaign."""
         self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
                  "each launch alone")  # fmt: skip
-        alone = self.price_all([(launch, dict(tol_mps=PATH_TOL_MPS)) for launch in self.launches])
+        alone = self.price_all([(launch, self.unpriced()) for launch in self.launches])
         for launch, result in zip(self.launches, alone, strict=True):
             self.pool.add(result.columns)
             if result.status == "infeasible":
@@ -184,8 +189,8 @@ class _Campaign:
             if not removed and not must and first.columns:
                 result = first  # the first launch alone is greedy's first mission
             else:
-                result = self.price_all([(launch, dict(tol_mps=PATH_TOL_MPS, exclude=removed,
-                                                       must_visit=must))])[0]  # fmt: skip
+                result = self.price_all([(launch, self.unpriced(exclude=removed,
+                                                                must_visit=must))])[0]  # fmt: skip
                 self.pool.add(result.columns)
             if not result.columns:
                 why = "time limit" if result.status == "no_plan" else "no mission flies"
