@@ -1,8 +1,8 @@
 """Command line: ``python -m sdc_cvx`` (or ``sdc-cvx``).
 
-Commands: ``run [SCENARIO.toml]``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``,
-``solvers``.  Exit codes: 0 success, 2 invalid input (nothing written), 3 infeasible
-mission, 4 solver failure.
+Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``sweep STUDY.toml``,
+``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``.  Exit codes: 0 success,
+2 invalid input (nothing written), 3 infeasible mission or campaign, 4 solver failure.
 """
 
 from __future__ import annotations
@@ -590,23 +590,26 @@ def solvers():
     click.echo(f"* default backend; cvxpy {importlib.metadata.version('cvxpy')}")
 
 
+def out_option(prefix: str):
+    """``--out DIR``, defaulting to a new ``{prefix}*`` folder here."""
+    return click.option("--out", "out_dir", type=click.Path(file_okay=False), default=None,
+                        help=f"Output folder [a new {prefix}* folder here].")  # fmt: skip
+
+
+def parallel_options(command):
+    """``--workers`` and ``--scheduler``: where independent solves run."""
+    command = click.option(
+        "--scheduler", default=None,
+        help="Address of a Dask distributed scheduler (tcp://host:8786) instead of a local "
+        "pool; needs the dask extra.")(command)  # fmt: skip
+    return click.option("--workers", type=click.IntRange(min=1), default=None,
+                        help="Local processes [one per core].")(command)  # fmt: skip
+
+
 @main.command("sweep")
 @click.argument("study_file", metavar="STUDY.toml", type=click.Path(dir_okay=False))
-@click.option(
-    "--out",
-    "out_dir",
-    type=click.Path(file_okay=False),
-    default=None,
-    help="Output folder [a new sdc_sweep_* folder here].",
-)
-@click.option("--workers", type=click.IntRange(min=1), default=None,
-              help="Local processes [one per core].")  # fmt: skip
-@click.option(
-    "--scheduler",
-    default=None,
-    help="Address of a Dask distributed scheduler (tcp://host:8786) instead of a "
-    "local pool; needs the dask extra.",
-)
+@out_option("sdc_sweep_")
+@parallel_options
 @click.option("--resume", is_flag=True, help="Skip the scenarios already finished in --out.")
 @click.option("--progress/--no-progress", default=None, hidden=True)
 def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
@@ -652,13 +655,8 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
 # ---------------------------------------------------------------------- campaign
 @main.command("campaign")
 @click.argument("scenario_file", metavar="SCENARIO.toml", type=click.Path(dir_okay=False))
-@click.option(
-    "--out",
-    "out_dir",
-    type=click.Path(file_okay=False),
-    default=None,
-    help="Output folder [a new sdc_campaign_* folder here].",
-)
+@out_option("sdc_campaign_")
+@parallel_options
 @click.option(
     "--time-limit",
     "time_limit_s",
@@ -668,15 +666,6 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
 )
 @click.option(
     "--gap", type=float, default=None, help="Relative gap of a certified answer [0.001 = 0.1 %]."
-)
-@click.option("--workers", type=click.IntRange(min=1), default=None,
-              help="Local processes pricing the launches [one per core, at most one per "
-              "launch].")  # fmt: skip
-@click.option(
-    "--scheduler",
-    default=None,
-    help="Address of a Dask distributed scheduler (tcp://host:8786) to price on; needs the "
-    "dask extra.",
 )
 @click.option("--quiet", is_flag=True, help="No progress, only the summary.")
 @click.option("--json", "json_out", is_flag=True,

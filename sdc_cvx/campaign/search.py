@@ -208,7 +208,8 @@ class _Campaign:
     def generate_columns(self) -> tuple[np.ndarray, np.ndarray] | None:
         """Step 3: column generation until the LP is solved, the gap met or time out.
 
-        Returns the last prices and the launches' bounds under them (for step 4).
+        Returns the prices of the best bound and the launches' bounds under them (step 4
+        closes from that bound: its window is plan - L(prices)).
         """
         last = None
         for round_ in range(1, MAX_ROUNDS + 1):
@@ -220,9 +221,9 @@ class _Campaign:
             results = self.price_all(tasks)
             bounds = np.array([r.lower_mps for r in results])
             lagrangian = float(bounds.sum() - lp.prices.sum())
-            if np.isfinite(lagrangian):
-                self.lower = max(self.lower, lagrangian)
-                last = (lp.prices, bounds)
+            if np.isfinite(lagrangian) and lagrangian > self.lower:
+                # the closing step needs the prices of the bound it closes from
+                self.lower, last = lagrangian, (lp.prices, bounds)
             new = sum(self.pool.add(r.columns) for r in results)
             self.master_plan()
             self.record(f"round {round_} (LP {lp.value:.2f} m/s, {new} new columns)", lp.value)

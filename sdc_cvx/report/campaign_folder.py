@@ -76,19 +76,12 @@ def write_campaign(folder, solution, *, formats=("png",), scenario_toml: str | N
                                    catalog=mission.catalog, formats=tuple(formats),
                                    log=None)  # fmt: skip
             mission_files += [f"{entry['folder']}/{name}" for name in written]
-        files = {
+        names += _write_texts(stage, {
             "missions.csv": solution.missions_frame().to_csv(
                 index=False, float_format=CSV_FLOAT_FORMAT),
             "history.csv": solution.history_frame().to_csv(
                 index=False, float_format=CSV_FLOAT_FORMAT),
-        }  # fmt: skip
-        if scenario_toml is not None:
-            files["scenario.toml"] = scenario_toml
-        if log is not None:
-            files["campaign.log"] = log
-        for name, text in files.items():
-            write_atomic(stage / name, text)
-            names.append(name)
+        }, scenario_toml, log)  # fmt: skip
         if formats:
             from .campaign_plots import save_campaign_figures  # matplotlib when drawn
 
@@ -120,16 +113,23 @@ def write_infeasible_campaign(folder, reason: str, *, start_utc: str | None,
     }
 
     def fill(stage: Path) -> list[str]:
-        files = {"campaign.json": json.dumps(data, indent=2, allow_nan=False)}
-        if scenario_toml is not None:
-            files["scenario.toml"] = scenario_toml
-        if log is not None:
-            files["campaign.log"] = log
-        for name, text in files.items():
-            write_atomic(stage / name, text)
-        return list(files)
+        text = json.dumps(data, indent=2, allow_nan=False)
+        return _write_texts(stage, {"campaign.json": text}, scenario_toml, log)
 
     return write_staged(folder, fill, markers=CAMPAIGN_FOLDER_MARKERS, kind=KIND)
+
+
+def _write_texts(stage: Path, files: dict, scenario_toml: str | None, log: str | None):
+    """Write ``files`` (name: text), ``scenario.toml`` and ``campaign.log`` when given;
+    the names written."""
+    files = dict(files)
+    if scenario_toml is not None:
+        files["scenario.toml"] = scenario_toml
+    if log is not None:
+        files["campaign.log"] = log
+    for name, text in files.items():
+        write_atomic(stage / name, text)
+    return list(files)
 
 
 def campaign_folder_problem(folder) -> str | None:

@@ -64,8 +64,14 @@ def plot_timeline(solution) -> Figure:
         ax.plot([d for _, d in row], [k] * len(row), "o", color=_color(k), markersize=6)
         if len(solution.missions) <= _MAX_LABELLED:
             for n, (name, d) in enumerate(row):
-                ax.annotate(name, (d, k), textcoords="offset points",
-                            xytext=(0, 8 if n % 2 == 0 else -14), ha="center", fontsize=8)
+                ax.annotate(
+                    name,
+                    (d, k),
+                    textcoords="offset points",
+                    xytext=(0, 8 if n % 2 == 0 else -14),
+                    ha="center",
+                    fontsize=8,
+                )
         ax.annotate(f"{mission.total_dv_mps:.0f} m/s", (end, k), textcoords="offset points",
                     xytext=(6, -3), fontsize=8, color="#444444")  # fmt: skip
     ax.set_yticks(range(len(solution.missions)),
@@ -123,8 +129,15 @@ def plot_dv(solution) -> Figure:
                label="operations")  # fmt: skip
     greedy = [c.dv_mps for c in solution.greedy.missions]
     if greedy:
-        ax.bar(np.arange(len(greedy)) + width / 2, greedy, width, color="none",
-               edgecolor="#444444", hatch="//", label="greedy (one mission at a time)")
+        ax.bar(
+            np.arange(len(greedy)) + width / 2,
+            greedy,
+            width,
+            color="none",
+            edgecolor="#444444",
+            hatch="//",
+            label="greedy (one mission at a time)",
+        )
     ax.set_xticks(k, [f"mission {i + 1}\nday {d:g}" for i, d in
                       zip(k, solution.launch_days, strict=True)])  # fmt: skip
     ax.set_ylabel("ΔV [m/s]")
@@ -156,8 +169,11 @@ def plot_bound(solution) -> Figure:
     finite = np.r_[upper[np.isfinite(upper)], lower[np.isfinite(lower)]]
     if finite.size:
         span = max(finite.max() - finite.min(), 1.0)
-        top = finite.max() if solution.greedy.dv_mps is None else max(finite.max(),
-                                                                        solution.greedy.dv_mps)
+        top = (
+            finite.max()
+            if solution.greedy.dv_mps is None
+            else max(finite.max(), solution.greedy.dv_mps)
+        )
         ax.set_ylim(finite.min() - 0.1 * span, top + 0.1 * span)
     ax.set_xlabel("elapsed [s]")
     ax.set_ylabel("campaign ΔV [m/s]")

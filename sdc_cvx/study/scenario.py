@@ -171,9 +171,15 @@ _TYPES = {
     "mission": typing.get_type_hints(Mission),
     "solver": typing.get_type_hints(SolverOptions),
     "selection": typing.get_type_hints(Selection) | {"max_eccentricity": _Limit | None},
-    "campaign": {"launch_days": object, "missions": int, "first_launch_day": float,
-                 "period_days": float, "n": object, "tmax_days": object,
-                 "must_remove": tuple[str, ...]},  # launch_days, n, tmax_days: _campaign
+    "campaign": {
+        "launch_days": object,
+        "missions": int,
+        "first_launch_day": float,
+        "period_days": float,
+        "n": object,
+        "tmax_days": object,
+        "must_remove": tuple[str, ...],
+    },  # launch_days, n, tmax_days: _campaign
 }
 _UNSET = {"catalog": "the latest epoch in the catalog", "mission": "none",
           "solver": "no limit / backend default",
@@ -297,8 +303,10 @@ class Scenario:
         if self.selection.to_dict():
             data["selection"] = self.selection.to_dict()
         if self.campaign is not None:
-            data["campaign"] = {key: self.campaign.to_dict()[key]
-                                for key in ("launch_days", "n", "tmax_days", "must_remove")}
+            data["campaign"] = {
+                key: self.campaign.to_dict()[key]
+                for key in ("launch_days", "n", "tmax_days", "must_remove")
+            }
         return data
 
     def to_toml(self) -> str:
@@ -411,8 +419,9 @@ def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign |
     """The ``[campaign]`` table as a :class:`Campaign` of ``mission``s (problems reported)."""
     before = len(problems)
     days = values.get("launch_days")
-    if days is not None and not (isinstance(days, list | tuple) and days
-                                 and all(_typed(d, float)[1] is None for d in days)):
+    if days is not None and not (
+        isinstance(days, list | tuple) and days and all(_typed(d, float)[1] is None for d in days)
+    ):
         problems.append(f"campaign.launch_days must be a non-empty array of numbers [days], "
                         f"got {_show(days)}")  # fmt: skip
     for key, kind, one, words in (("n", int, "an integer", "integers"),
@@ -426,11 +435,15 @@ def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign |
                             f"launch), got {_show(value)}")  # fmt: skip
     yearly = [key for key in ("missions", "first_launch_day", "period_days") if key in values]
     if days is not None and yearly:
-        problems.append(f"campaign: give launch_days, or missions (with first_launch_day and "
-                        f"period_days), not both; got launch_days and {', '.join(yearly)}")
+        problems.append(
+            f"campaign: give launch_days, or missions (with first_launch_day and "
+            f"period_days), not both; got launch_days and {', '.join(yearly)}"
+        )
     elif days is None and "missions" not in values:
-        problems.append("campaign: needs launch_days = [day, ...] or missions = K (launches "
-                        "period_days apart from first_launch_day)")
+        problems.append(
+            "campaign: needs launch_days = [day, ...] or missions = K (launches "
+            "period_days apart from first_launch_day)"
+        )
     if len(problems) > before:
         return None
     options = {"n": values.get("n"), "tmax_days": values.get("tmax_days"),

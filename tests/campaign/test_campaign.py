@@ -75,8 +75,11 @@ def write(tmp_path, text: str, name="campaign.toml"):
 
 
 def test_the_campaign_table_defaults_to_the_mission_table(tmp_path):
-    path = write(tmp_path, "[mission]\nn = 3\ntmax_days = 200\n[campaign]\nmissions = 2\n"
-                           "period_days = 100\ntmax_days = [150, 250]\nmust_remove = ['5']\n")
+    path = write(
+        tmp_path,
+        "[mission]\nn = 3\ntmax_days = 200\n[campaign]\nmissions = 2\n"
+        "period_days = 100\ntmax_days = [150, 250]\nmust_remove = ['5']\n",
+    )
     campaign = Scenario.load(path).campaign
     assert campaign.launch_days == (0.0, 100.0)
     assert [m.n for m in campaign.missions] == [3, 3]
@@ -140,8 +143,7 @@ def test_campaign_command_writes_the_campaign_folder(tmp_path):
     assert data["lower_bound_mps"] <= data["total_dv_mps"]
     assert data["gap_rel"] <= 1e-3
     assert [m["launch_day"] for m in data["missions"]] == [0, 365.25]
-    assert sum(m["total_dv_mps"] for m in data["missions"]) == pytest.approx(
-        data["total_dv_mps"])
+    assert sum(m["total_dv_mps"] for m in data["missions"]) == pytest.approx(data["total_dv_mps"])
     removed = [d for m in data["missions"] for d in m["path"]]
     assert len(removed) == len(set(removed)) == 4
     for mission in data["missions"]:
@@ -167,7 +169,8 @@ def test_campaign_command_writes_the_campaign_folder(tmp_path):
 @pytest.mark.slow
 def test_campaign_command_infeasible_launch_exit_3(tmp_path):
     text = SCENARIO.format(catalog=small_catalog(tmp_path)).replace(
-        "launch_days = [0, 365.25]", "launch_days = [0, 365.25]\ntmax_days = [150, 1]")
+        "launch_days = [0, 365.25]", "launch_days = [0, 365.25]\ntmax_days = [150, 1]"
+    )
     scenario = write(tmp_path, text)
     done = cli("campaign", str(scenario), "--out", "out", "--workers", "1", cwd=tmp_path)
     assert done.returncode == 3, done.stderr
