@@ -58,6 +58,9 @@ PATH_TOL_MPS = 0.01
 """Absolute tolerance of each mission's schedule [m/s] (the single mission's)."""
 MAX_ROUNDS = 200
 """Column generation rounds at most."""
+EVERY_MISSION_MPS = 1e6
+"""A ΔV no mission reaches [m/s] (a leg costs at most a few km/s): a window this wide
+around a launch's best mission enumerates every mission that flies from it."""
 
 
 @dataclass
@@ -164,6 +167,7 @@ class _Campaign:
         self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
                  "each launch alone")  # fmt: skip
         alone = self.price_all([(launch, self.unpriced()) for launch in self.launches])
+        self.alone_bounds = [result.lower_mps for result in alone]
         for launch, result in zip(self.launches, alone, strict=True):
             self.pool.add(result.columns)
             if result.status == "infeasible":
@@ -247,10 +251,20 @@ class _Campaign:
         return last
 
     def close(self, prices: np.ndarray, bounds: np.ndarray) -> None:
-        """Step 4: every mission that could be on a cheaper campaign, then the exact master."""
-        window = self.upper - self.lower
-        self.say(f"  closing the gap: every mission within {window:.2f} m/s of its launch's "
-                 "best reduced cost")  # fmt: skip
+        """Step 4: every mission that could be on a cheaper campaign, then the exact master.
+
+        Without a plan (the LP is fractional and the pool holds no campaign), every
+        mission that flies is enumerated, without prices: the master over them then has
+        a campaign, or proves that none exists.
+        """
+        if self.plan is None:
+            prices, bounds = np.zeros(len(self.catalog)), np.asarray(self.alone_bounds)
+            window = EVERY_MISSION_MPS
+            self.say("  no campaign in the pool: every mission that flies, launch by launch")
+        else:
+            window = self.upper - self.lower
+            self.say(f"  closing the gap: every mission within {window:.2f} m/s of its "
+                     "launch's best reduced cost")  # fmt: skip
         tasks = [(launch, dict(prices=prices, tol_mps=self.tol,
                                ceiling_mps=bounds[k] + window + self.tol))
                  for k, launch in enumerate(self.launches)]  # fmt: skip
@@ -261,8 +275,16 @@ class _Campaign:
             lower = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
                              solver=self.solver,
                              costs=[c.lower_mps for c in self.pool.columns])  # fmt: skip
-            if lower is not None:
-                self.lower = max(self.lower, min(lower.value, self.upper))
+            if lower is None:
+                raise MissionInfeasible(
+                    "proven: no campaign removes each debris at most once with these "
+                    f"missions ({self.missions_text()}): every mission that flies from each "
+                    "launch was enumerated, and no choice of one per launch shares no debris"
+                    f"{' and removes every must_remove debris' if self.must else ''}. Relax one "
+                    "of: fewer debris per mission (n), must_remove, a longer mission "
+                    "(tmax_days), more candidates"
+                )
+            self.lower = max(self.lower, min(lower.value, self.upper))
         else:
             self.notes.append("time limit reached while closing the gap")
         self.record(f"closing ({new} new columns)")
@@ -366,8 +388,7 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         last = None
         if not search.within():
             last = search.generate_columns()
-        if not search.within() and last is not None and not search.out_of_time() \
-                and search.plan is not None:  # fmt: skip
+        if not search.within() and last is not None and not search.out_of_time():
             search.close(*last)
     if search.plan is None:
         raise SolverFailure(

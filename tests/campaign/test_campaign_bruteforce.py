@@ -165,3 +165,17 @@ def test_missions_that_cannot_share_the_debris_are_infeasible():
                         must_remove=("S000", "S001", "S002"))  # fmt: skip
     with pytest.raises(MissionInfeasible, match="no campaign removes each debris at most once"):
         solve_campaign(FAST.catalog(), campaign, workers=1)
+
+
+@pytest.mark.slow
+def test_a_fractional_master_with_no_campaign_is_proven_infeasible():
+    """Every launch flies alone and the master LP has a solution (missions at weight 1/2),
+    but no choice of one mission per launch shares no debris: the brute force finds none,
+    and the search proves it by enumerating every mission that flies."""
+    case = Case("fractional", 9, 1955924217, (0.0, 192.42725249566993, 367.0518560075124),
+                (3, 2, 3), (255.9491597347579, 165.8685084078223, 149.31483286403528),
+                rule="free", spread_deg=0.964425726499131)  # fmt: skip
+    assert not np.isfinite(brute(case).dv_mps)
+    assert all(brute(case).per_launch)  # each launch flies alone
+    with pytest.raises(MissionInfeasible, match="every mission that flies from each launch"):
+        solve_campaign(case.catalog(), case.campaign(), workers=1)
