@@ -172,7 +172,8 @@ def sniff_format(path: str | os.PathLike) -> str | None:
     return _sniff_text(head.decode("utf-8-sig", errors="replace"))
 
 
-def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=None) -> Catalog:
+def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=None,
+                 on_invalid: str = "raise") -> Catalog:  # fmt: skip
     """Read a debris catalog in any supported format.
 
     Parameters
@@ -185,6 +186,10 @@ def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=No
         ``.kvn``, ``.omm``).
     start : str or datetime-like, optional
         Mission start date (UTC when naive); default the latest epoch.
+    on_invalid : {"raise", "set aside"}
+        Element sets that are not orbits of this model (README, "Physical domain"):
+        problems (default), or set aside in ``Catalog.invalid``, for the candidate
+        selection to report those it keeps (:func:`sdc_cvx.inputs.selection.select`).
 
     Raises
     ------
@@ -201,4 +206,4 @@ def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=No
     reader = READERS.get(str(format).lower())
     if reader is None:
         _fail(source, f"unknown catalog format {format!r}; expected one of {', '.join(FORMATS)}")
-    return reader(path, start=start)
+    return reader(path, start=start, on_invalid=on_invalid)
