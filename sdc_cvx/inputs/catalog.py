@@ -113,7 +113,10 @@ class Catalog:
         path : str or path-like
             UTF-8 CSV file with a header line.  Required columns ``id, a_km, e,
             inc_deg, raan_deg``; optional ``name`` and ``epoch`` (ISO-8601, UTC when
-            naive); other columns are kept as strings.  Blank lines are skipped.
+            naive); other columns are kept as strings.  Blank lines are skipped.  The
+            column names are read whatever their case (``ID``, ``A_KM``), and the
+            fields may be separated by ``;`` or tabs when the header line has no comma
+            (:func:`csv_delimiter`); numbers take a decimal point.
         start : str or datetime-like, optional
             Mission start date (UTC when naive), within :data:`MAX_PROPAGATION_DAYS` of
             the epochs.  Default: the latest epoch, or None without epochs.
@@ -131,7 +134,8 @@ class Catalog:
             The file is missing, unreadable, empty, or any row is invalid.
         """
         source, text = read_text(path)
-        header, records = _read_csv(io.StringIO(text, newline=""), source)
+        stream = io.StringIO(text, newline="")
+        header, records = _read_csv(stream, source, delimiter=csv_delimiter(text))
         return cls._from_records(header, records, source, start, on_invalid)
 
     @classmethod
@@ -354,13 +358,28 @@ def read_text(path: str | os.PathLike) -> tuple[str, str]:
     return source, text
 
 
-def _read_csv(stream: Iterable[str], source: str):
+def csv_delimiter(text: str) -> str:
+    """The field separator of a CSV catalog: ``,`` unless the header line (the first that is
+    not blank) has none and has ``;`` or a tab (a spreadsheet's export in some locales)."""
+    for line in text.splitlines():
+        if line.strip():
+            if "," not in line:
+                for other in (";", "\t"):
+                    if other in line:
+                        return other
+            return ","
+    return ","
+
+
+def _read_csv(stream: Iterable[str], source: str, delimiter: str = ","):
     """Header and ``(first line, fields)`` records of a CSV text, blank lines skipped.
 
-    Raises a :class:`CatalogError` at once for an empty file, a file without data rows,
-    malformed CSV or a bad header (missing, duplicate or blank column names).
+    Column names that are known columns in another case (``ID``, ``A_KM``) are read as
+    those columns.  Raises a :class:`CatalogError` at once for an empty file, a file
+    without data rows, malformed CSV or a bad header (missing, duplicate or blank column
+    names).
     """
-    reader = csv.reader(stream)
+    reader = csv.reader(stream, delimiter=delimiter)
     header = None
     records = []
     line = 0
@@ -370,7 +389,7 @@ def _read_csv(stream: Iterable[str], source: str):
             if all(not field.strip() for field in fields):
                 continue
             if header is None:
-                header = [field.strip() for field in fields]
+                header = [_known_case(field.strip()) for field in fields]
             else:
                 records.append((first, fields))
     except csv.Error as exc:
@@ -384,6 +403,12 @@ def _read_csv(stream: Iterable[str], source: str):
     if problems:
         raise CatalogError.collect(source, problems)
     return header, records
+
+
+def _known_case(name: str) -> str:
+    """``name`` as the known column it names in any case (``"A_KM"`` -> ``"a_km"``)."""
+    lower = name.lower()
+    return lower if lower != name and lower in KNOWN_COLUMNS else name
 
 
 def _header_problems(columns: list, source: str) -> list[str]:
@@ -671,7 +696,10 @@ def _to_float(value, check) -> tuple[float, str | None]:
             raise TypeError
         number = float(value)
     except (ValueError, TypeError, OverflowError):
-        return math.nan, f"expected a number, got {_show(value)}"
+        hint = ""
+        if isinstance(value, str) and re.fullmatch(r"\s*[+-]?\d+,\d+\s*", value):
+            hint = f" (a decimal comma? write {value.strip().replace(',', '.')})"
+        return math.nan, f"expected a number, got {_show(value)}{hint}"
     if math.isnan(number):
         return math.nan, f"expected a number, got {_show(value)} (NaN)"
     if not math.isfinite(number):
