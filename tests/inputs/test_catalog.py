@@ -391,3 +391,27 @@ def test_subset_single_string_id_and_empty_selection():
     assert Catalog.paper_case().subset("10").ids == ("10",)
     with pytest.raises(CatalogError, match="at least one debris id"):
         Catalog.paper_case().subset([])
+
+
+# ---------------------------------------------------------------------- spreadsheet CSV
+@pytest.mark.parametrize(
+    "text",
+    [
+        "ID,A_KM,E,INC_DEG,RAAN_DEG\n1,7000,0.001,98,10\n2,7100,0.001,98.2,20\n",
+        "id;a_km;e;inc_deg;raan_deg\n1;7000;0.001;98;10\n2;7100;0.001;98.2;20\n",
+        "Id\tA_km\te\tinc_deg\tRAAN_deg\n1\t7000\t0.001\t98\t10\n2\t7100\t0.001\t98.2\t20\n",
+    ],
+    ids=["upper-case", "semicolons", "tabs"],
+)
+def test_upper_case_and_semicolon_headers_are_read(tmp_path, text):
+    """Issue 20: a spreadsheet's export is read as the plain CSV it stands for."""
+    cat = Catalog.from_csv(write(tmp_path, text))
+    assert cat.ids == ("1", "2")
+    assert list(cat.frame["a_km"]) == [7000.0, 7100.0]
+    assert list(cat.frame["raan_deg"]) == [10.0, 20.0]
+
+
+def test_decimal_comma_names_the_fix(tmp_path):
+    message = error_of(tmp_path, "id;a_km;e;inc_deg;raan_deg\n1;7000,5;0.001;98;10\n")
+    assert "row 1 (line 2), field 'a_km': expected a number, got '7000,5' (a decimal comma? " \
+        "write 7000.5)" in message  # fmt: skip

@@ -437,3 +437,29 @@ def test_to_dict_has_start_and_selection_only_when_set(debris_csv):
     assert data["catalog"]["start"] == "2020-06-01T10:00:00+00:00"
     assert data["selection"] == {"max_eccentricity": 0.0, "exclude_ids": ["8"]}
     json.dumps(data)  # JSON-ready
+
+
+def test_selection_types_and_catalog_strict_round_trip(tmp_path, debris_csv):
+    text = (f'[catalog]\npath = "{debris_csv}"\nstrict = true\n'
+            '[selection]\ntypes = ["rocket-body", "debris"]\nnames = ["SL-8 R/B*"]\n')  # fmt: skip
+    scenario = load(write(tmp_path, text))
+    assert scenario.catalog_strict is True
+    assert scenario.selection.types == ("rocket-body", "debris")
+    again = load(write(tmp_path, scenario.to_toml(), "again.toml"))
+    assert again == scenario and again.catalog_strict
+    assert "strict" not in Scenario().to_dict()["catalog"]  # unset: the sweep's sha as before
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ('[selection]\ntypes = ["rocket"]\n', "selection.types must hold rocket-body, debris, "
+         "payload, got ['rocket']"),
+        ("[catalog]\nstrict = 1\n", "catalog.strict must be a boolean"),
+        ("[catalog]\nstrict = true\n", "catalog.strict needs catalog.path"),
+    ],
+)  # fmt: skip
+def test_bad_types_and_strict_name_the_key(tmp_path, text, expected):
+    with pytest.raises(ScenarioError) as caught:
+        load(write(tmp_path, text))
+    assert expected in str(caught.value)
