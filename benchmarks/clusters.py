@@ -15,7 +15,8 @@ repository).  Prints, after a header naming the machine (CPU, cores, load, versi
 3. each example scenario of ``examples/cluster_*.toml`` solved as ``run`` does
    (:meth:`Scenario.select_candidates`, then ``sdc_cvx.solve`` with the scenario's
    solver options: the certified search), with its answer, lower bound, gap, status and
-   seconds (selection + solve; the run folder's figures are not drawn).
+   seconds (reading the whole file again, selection and solve; the run folder's figures
+   are not drawn).
 
 ``benchmarks/results/clusters.txt`` is one such output (a shared 2-core machine).
 """

@@ -11,6 +11,14 @@ package.  Bad input never produces a pandas or numpy traceback: every problem of
 is collected and reported at once in a :class:`CatalogError` that names the file, the
 row, the line and the field.
 
+A row that is well formed but is not an orbit of this model (perigee below
+:data:`MIN_PERIGEE_KM`, ``a`` above :data:`MAX_A_KM`, an epoch more than
+:data:`MAX_PROPAGATION_DAYS` from the start, or, for TLE and OMM, elements sgp4 rejects)
+is a problem too, unless the catalog is read with ``on_invalid="set aside"``: it then
+goes to ``Catalog.invalid``, for the candidate filters to act first
+(:func:`sdc_cvx.inputs.selection.select` reports only those it would keep).  A whole
+public catalogue always holds a few such element sets.
+
 Equation, table and part numbers are those of Cerf's paper [1]_; the design
 rationale is in ``docs/design.md``.
 
