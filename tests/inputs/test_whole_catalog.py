@@ -322,3 +322,19 @@ def test_the_whole_catalogue_and_its_example_clusters():
     assert len(counts["sl8_74deg"]) == 50
     sso = read_tle(shared_file("sso_rocket_bodies_2020/sso_rb.tle"))
     assert sorted(counts["sso_rocket_bodies"].ids) == sorted(sso.ids)
+
+
+@pytest.mark.slow
+def test_the_sl16_example_runs_certified_end_to_end(tmp_path):
+    """``run examples/cluster_sl16_71deg.toml``: the whole file read, the 18 SL-16 rocket
+    bodies selected, five of them certified optimal (about 20 s)."""
+    from tests.conftest import EXAMPLES
+
+    shared_file(WHOLE)
+    out = tmp_path / "run"
+    args = ["run", str(EXAMPLES / "cluster_sl16_71deg.toml"), "--out", str(out), "--quiet"]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert "Traceback" not in result.output and "warning" not in result.stderr
+    assert "total dV" in result.stdout and "optimal (gap" in result.stdout
+    assert (out / "solution.json").is_file() and (out / "orbits.png").is_file()
