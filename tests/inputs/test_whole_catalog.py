@@ -338,3 +338,28 @@ def test_the_sl16_example_runs_certified_end_to_end(tmp_path):
     assert "Traceback" not in result.output and "warning" not in result.stderr
     assert "total dV" in result.stdout and "optimal (gap" in result.stdout
     assert (out / "solution.json").is_file() and (out / "orbits.png").is_file()
+
+
+def test_sweeps_select_by_name_and_type_and_honour_strict(cut, tmp_path):
+    """A sweep's scenarios take ``selection.names`` / ``selection.types`` and
+    ``catalog.strict`` as ``run`` does (its worker selects through the same call)."""
+    from sdc_cvx.study.study import Study
+    from sdc_cvx.study.worker import solve_scenario
+
+    path, line_of = cut
+    base = (f'[catalog]\npath = "{path}"\n[mission]\nn = 2\ntmax_days = 60.0\n'
+            '[selection]\ntypes = ["rocket-body"]\n')  # fmt: skip
+    (tmp_path / "base.toml").write_text(base)
+    study = Study.from_dict({"base": str(tmp_path / "base.toml"),
+                             "grid": {"selection.names": [["SL-16 R/B*"], ["*R/B*"]],
+                                      "catalog.strict": [False, True]}})  # fmt: skip
+    rows = {(item.scenario.selection.names, item.scenario.catalog_strict): solve_scenario(
+        item.scenario.to_toml()) for item in study.scenarios}  # fmt: skip
+    for names in (("SL-16 R/B*",), ("*R/B*",)):
+        assert rows[names, False]["status"] == "optimal", rows[names, False]["error"]
+    # SL-4 R/B 45596 and CZ-5B R/B 45601 (perigee below 150 km) are rocket bodies: the
+    # second selection keeps them, which strict refuses; the first never looks at them
+    assert rows[("SL-16 R/B*",), True]["status"] == "optimal"
+    refused = rows[("*R/B*",), True]
+    assert refused["status"] == "error"
+    assert f"line {line_of['45596']} (catalog number 45596)" in refused["error"]
