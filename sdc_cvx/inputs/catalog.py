@@ -240,8 +240,9 @@ class Catalog:
         domain: dict[int, str] = dict(flagged or {})
         columns = _check_rows(raw, source, where, problems, broken or {}, domain)
         start_ts = _parse_start(start, source, problems)
-        if columns.epochs is not None and not problems:
-            usable = [e for pos, e in enumerate(columns.epochs) if pos not in domain]
+        if columns.epochs is not None:  # also with other problems: one error says all
+            usable = [e for pos, e in enumerate(columns.epochs)
+                      if pos not in domain and e is not None]  # fmt: skip
             if start_ts is None and usable:
                 start_ts = max(usable)
             _check_epochs(columns.epochs, start_ts, start is not None, source, domain, problems)
@@ -535,6 +536,7 @@ def _check_epochs(epochs, start, given: bool, source, domain, problems) -> None:
     stamps = pd.DatetimeIndex(epochs)
     days = np.abs((stamps - start).total_seconds().to_numpy() / SECONDS_PER_DAY)
     usable = np.array([pos not in domain for pos in range(len(epochs))], dtype=bool)
+    usable &= ~np.isnan(days)  # an unreadable epoch is reported as such
     if given and usable.any() and days[usable].min() > MAX_PROPAGATION_DAYS:
         nearest = stamps[usable][int(np.argmin(days[usable]))]
         problems.append(

@@ -415,3 +415,16 @@ def test_decimal_comma_names_the_fix(tmp_path):
     message = error_of(tmp_path, "id;a_km;e;inc_deg;raan_deg\n1;7000,5;0.001;98;10\n")
     assert "row 1 (line 2), field 'a_km': expected a number, got '7000,5' (a decimal comma? " \
         "write 7000.5)" in message  # fmt: skip
+
+
+def test_far_epoch_and_bad_field_come_in_one_error(tmp_path):
+    """Issue 20: an epoch 60 years before the others and a bad number are one error (not
+    one, then the other once the first is fixed)."""
+    text = (f"{HEADER},epoch\n1,7000,0,98,0,1960-05-24T00:00:00Z\n2,7000,0,x,0,2020-05-24\n"
+            "3,7000,0,98,0,2020-05-24\n")  # fmt: skip
+    message = error_of(tmp_path, text)
+    assert message.startswith("2 problems in")
+    assert "row 1 (line 2), field 'epoch': expected an epoch within 3652.5 days (10 years) of " \
+        "the mission start 2020-05-24T00:00:00+00:00, got 1960-05-24T00:00:00+00:00 (60.0 " \
+        "years away" in message  # fmt: skip
+    assert "row 2 (line 3), field 'inc_deg': expected a number, got 'x'" in message
