@@ -624,7 +624,8 @@ def catalog_command(file, catalog_format, start, altitude_km, inclination_deg, m
     # the orbits dropped, and why (not those the patterns or types leave out, nor the
     # element sets already warned about)
     chosen = {"ids", "names", "type", "excluded", "invalid"}
-    orbits = report[[not set(checks.split(",")) & chosen for checks in report["checks"]]]
+    listed = report["checks"].map(lambda checks: not set(checks.split(",")) & chosen)
+    orbits = report[listed.astype(bool)]
     for row in orbits.head(MAX_DROPPED_SHOWN).itertuples():
         click.echo(f"  dropped {row.id}: {row.reason}", err=True)
     if len(orbits) > MAX_DROPPED_SHOWN:
