@@ -34,7 +34,7 @@ if TYPE_CHECKING:  # the commands import what they use: --help stays light
 
     from .inputs.catalog import Catalog
     from .milp.types import SolverOptions
-    from .study.scenario import Scenario, Selection
+    from .study.scenario import Scenario
 
 INPUT_ERROR = 2
 INFEASIBLE = 3
@@ -74,8 +74,12 @@ def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
         fail(str(err))
 
 
-def read_catalog(scenario: Scenario) -> Catalog:
-    """The scenario's catalog, validated; exit 2 with its problems if invalid."""
+def read_catalog(scenario: Scenario, on_invalid: str = "raise") -> Catalog:
+    """The scenario's catalog, validated; exit 2 with its problems if invalid.
+
+    With ``on_invalid="set aside"`` the element sets that are not orbits of this model are
+    kept aside for :func:`select_candidates` (the filters act first).
+    """
     import warnings
 
     from .errors import CatalogWarning
@@ -83,7 +87,7 @@ def read_catalog(scenario: Scenario) -> Catalog:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", CatalogWarning)
         try:
-            catalog = scenario.load_catalog()
+            catalog = scenario.load_catalog(on_invalid=on_invalid)
         except (CatalogError, ScenarioError) as err:
             fail(str(err))
     for warning in caught:
@@ -156,32 +160,59 @@ def selection_options(command):
                      help="Keep ids matching PATTERN (shell-style, repeatable)."),
         click.option("--exclude-ids", multiple=True, metavar="PATTERN",
                      help="Drop ids matching PATTERN (shell-style, repeatable)."),
+        click.option("--names", "names", multiple=True, metavar="PATTERN",
+                     help='Keep names matching PATTERN (shell-style, case-insensitive, '
+                     'repeatable), e.g. "SL-16 R/B*".'),
+        click.option("--type", "types", multiple=True,
+                     type=click.Choice(["rocket-body", "debris", "payload"]),
+                     help="Keep objects of this type, told from the name (R/B, DEB; "
+                     "repeatable)."),
+        click.option("--strict", is_flag=True, default=None,
+                     help="Refuse the catalog when the selection keeps an element set that "
+                     "is not an orbit of this model [drop it with a warning]."),
     ]  # fmt: skip
     for option in reversed(options):
         command = option(command)
     return command
 
 
-def selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids) -> dict:
-    """The ``selection.*`` overrides of the filter options (None: not given)."""
+def selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
+                        names=(), types=(), strict=None) -> dict:  # fmt: skip
+    """The ``selection.*`` (and ``catalog.strict``) overrides of the filter options (None: not
+    given)."""
     return {"selection.altitude_km": altitude_km, "selection.inclination_deg": inclination_deg,
             "selection.max_eccentricity": max_eccentricity, "selection.ids": tuple(ids) or None,
-            "selection.exclude_ids": tuple(exclude_ids) or None}  # fmt: skip
+            "selection.exclude_ids": tuple(exclude_ids) or None,
+            "selection.names": tuple(names) or None, "selection.types": tuple(types) or None,
+            "catalog.strict": strict}  # fmt: skip
 
 
-def select_candidates(catalog: Catalog, selection: Selection, echo) -> tuple[Catalog, pd.DataFrame]:
-    """The candidates kept by the ``selection``; exit 2 if none or a bad pattern.
+def select_candidates(catalog: Catalog, scenario: Scenario, echo) -> tuple[Catalog, pd.DataFrame]:
+    """The candidates kept by the scenario's selection; exit 2 if none or a bad pattern.
 
     ``echo`` gets the "kept K of N candidates (...)" line when a filter is set or a
-    debris is dropped (near-polar orbits and e > 0.05 are always dropped).
+    debris is dropped (near-polar orbits and e > 0.05 are always dropped).  Element sets
+    of ``catalog.invalid`` that the filters keep get one warning line each (file, line,
+    catalogue number, reason) and a count; with ``catalog.strict`` (``--strict``) they
+    are refused (exit 2).
     """
     from .inputs.selection import summary as selection_summary
     from .study.scenario import Selection
 
+    selection = scenario.selection
     try:
-        kept, report = selection.apply(catalog)
+        kept, report = selection.apply(catalog, strict=scenario.catalog_strict)
+    except CatalogError as err:
+        fail(str(err))
     except ValueError as err:
         fail(f"candidate selection: {err}")
+    invalid = report[report["checks"] == "invalid"]
+    for reason in invalid["reason"]:
+        click.echo(f"warning: dropped, not an orbit of this model: {reason}", err=True)
+    if len(invalid):
+        click.echo(f"warning: {len(invalid)} element set(s) in the selection dropped: not "
+                   "orbits of this model (README, 'Physical domain'); --strict refuses them",
+                   err=True)  # fmt: skip
     line = selection_summary(kept, report)
     if len(kept) == 0:
         fail(f"no candidate left in {catalog.source}: {line}")
@@ -401,7 +432,8 @@ class RunProgress:
     help="Force the per-iteration lines on or off [on when stderr is a terminal].",
 )
 def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclination_deg,
-        max_eccentricity, ids, exclude_ids, n, tmax_days, deorbit_days, preopt_days, dv_max_mps,
+        max_eccentricity, ids, exclude_ids, names, types, strict, n, tmax_days, deorbit_days,
+        preopt_days, dv_max_mps,
         min_transfer_days, backend, method, gap, time_limit_s, mip_gap, threads, fallback,
         out_dir, quiet, json_out, svg, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
@@ -427,20 +459,21 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         backend=backend, method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
         threads=threads,
         fallback=tuple(fallback) or None,
-        **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids),
+        **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
+                              names, types, strict),
     )  # fmt: skip
     if out_dir is not None:  # before the solve: a bad --out must not cost a solve
         problem = out_folder_problem(Path(out_dir))
         if problem is not None:
             fail(f"--out: {problem}")
-    catalog = read_catalog(scenario)
+    catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
     mission, solver = scenario.mission, scenario.solver
 
     def info(message: str) -> None:
         if not quiet:
             click.echo(message, err=True)
 
-    catalog, _ = select_candidates(catalog, scenario.selection, info)
+    catalog, _ = select_candidates(catalog, scenario, info)
     try:
         mission.check_candidates(catalog.ids)
     except MissionError as err:
@@ -543,20 +576,56 @@ def catalog_table(catalog: Catalog) -> str:
 )
 @start_option
 @selection_options
+@click.option(
+    "--clusters",
+    is_flag=True,
+    help="Print the dense groups of the selection (altitude x inclination cells) "
+    "with their counts, J2 rate and RAAN spreads, instead of every object.",
+)
+@click.option(
+    "--min-objects",
+    type=click.IntRange(min=2),
+    default=10,
+    show_default=True,
+    help="With --clusters: the fewest objects a group has.",
+)
+@click.option(
+    "--figure",
+    "figure_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="With --clusters: also save the figure (altitude against inclination, "
+    "RAAN against J2 rate) to this .png or .svg file.",
+)
 def catalog_command(file, catalog_format, start, altitude_km, inclination_deg, max_eccentricity,
-                    ids, exclude_ids):  # fmt: skip
+                    ids, exclude_ids, names, types, strict, clusters, min_objects,
+                    figure_path):  # fmt: skip
     """Validate a debris catalog and print it as a table (default: the paper's Table 5).
 
-    The candidate filters drop debris as ``run`` does; the dropped ones and why go to
-    stderr.
+    The candidate filters drop debris as ``run`` does, and act first: element sets they
+    drop are never validated; those they keep that are not orbits of this model are
+    dropped with a warning line each (refused with --strict).  The dropped ones and why
+    go to stderr.  --clusters prints the catalogue's dense groups instead, so that a
+    selection can be chosen (e.g. ``--type rocket-body --clusters``).
     """
-    filters = selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids)
+    if figure_path is not None and not clusters:
+        fail("--figure needs --clusters (the figure is the clusters' figure)")
+    if figure_path is not None and Path(figure_path).suffix.lower() not in (".png", ".svg"):
+        fail(f"--figure: expected a .png or .svg file name, got {figure_path!r}")
+    filters = selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
+                                  names, types, strict)  # fmt: skip
     scenario = build_scenario(None, catalog_path=file, catalog_format=catalog_format,
                               catalog_start=start, **filters)  # fmt: skip
-    catalog = read_catalog(scenario)
-    catalog, report = select_candidates(catalog, scenario.selection, partial(click.echo, err=True))
-    # the orbits dropped, and why (not those the --ids / --exclude-ids patterns leave out)
-    orbits = report[~report["checks"].isin(["ids", "excluded", "ids,excluded"])]
+    catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
+    catalog, report = select_candidates(catalog, scenario, partial(click.echo, err=True))
+    if clusters:
+        clusters_output(catalog, min_objects, figure_path)
+        return
+    # the orbits dropped, and why (not those the patterns or types leave out, nor the
+    # element sets already warned about)
+    chosen = {"ids", "names", "type", "excluded", "invalid"}
+    listed = report["checks"].map(lambda checks: not set(checks.split(",")) & chosen)
+    orbits = report[listed.astype(bool)]
     for row in orbits.head(MAX_DROPPED_SHOWN).itertuples():
         click.echo(f"  dropped {row.id}: {row.reason}", err=True)
     if len(orbits) > MAX_DROPPED_SHOWN:
@@ -564,6 +633,26 @@ def catalog_command(file, catalog_format, start, altitude_km, inclination_deg, m
     click.echo(catalog_table(catalog))
     start = "" if catalog.start is None else f", RAANs at {catalog.start.isoformat()}"
     click.echo(f"{len(catalog)} debris from {catalog.source}{start}", err=True)
+
+
+def clusters_output(catalog: Catalog, min_objects: int, figure_path: str | None) -> None:
+    """The ``catalog --clusters`` table on stdout, the figure to ``figure_path``."""
+    from .inputs.clusters import clusters_table, find_clusters
+
+    found = find_clusters(catalog, min_objects=min_objects)
+    click.echo(clusters_table(found))
+    click.echo(f"{len(found.table)} groups of at least {min_objects} objects among "
+               f"{len(catalog)} from {catalog.source}; narrow the selection to one with the "
+               "flags of its 'select' column", err=True)  # fmt: skip
+    if figure_path is not None:
+        from .report.clusters import plot_clusters
+
+        figure = plot_clusters(catalog, found)
+        try:
+            figure.savefig(figure_path, dpi=120)
+        except OSError as err:
+            fail(f"--figure: cannot write {figure_path}: {err.strerror or err}")
+        click.echo(f"figure    {figure_path}", err=True)
 
 
 # ---------------------------------------------------------------------- solvers

@@ -391,14 +391,26 @@ def test_run_records_the_start_and_the_flag_overrides_it(tmp_path, file_start, f
 @pytest.mark.requires_shared_data("gtoc9/debris_data.txt")
 def test_catalog_start_moves_the_raans_of_the_gtoc9_file():
     args = ["catalog", str(GTOC9), "--format", "gtoc9", "--ids", "0"]
-    result = CliRunner().invoke(main, [*args, "--start", "2000-01-01"])
+    result = CliRunner().invoke(main, [*args, "--start", "2059-06-01"])  # the epochs: 2060
     assert result.exit_code == 0, result.output
-    assert "RAANs at 2000-01-01T00:00:00+00:00" in result.stderr
-    raan = read_gtoc9(GTOC9, start=datetime(2000, 1, 1, tzinfo=UTC)).frame["raan_deg"][0]
+    assert "RAANs at 2059-06-01T00:00:00+00:00" in result.stderr
+    raan = read_gtoc9(GTOC9, start=datetime(2059, 6, 1, tzinfo=UTC)).frame["raan_deg"][0]
     latest = read_gtoc9(GTOC9).frame["raan_deg"][0]
     assert abs(raan - latest) > 1.0
     row = result.stdout.splitlines()[1].split()
     assert row[0] == "0" and row[3] == f"{raan:.4f}"
+
+
+@pytest.mark.requires_shared_data("gtoc9/debris_data.txt")
+def test_catalog_start_decades_from_the_epochs_exits_2():
+    """Issue 20: a --start 60 years before the GTOC9 epochs (2060) is refused."""
+    args = ["catalog", str(GTOC9), "--format", "gtoc9", "--start", "2000-01-01"]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 2, result.output
+    assert "argument 'start': 2000-01-01T00:00:00+00:00 is 21,919 days (60.0 years)" in (
+        result.stderr
+    )
+    assert "Traceback" not in result.output
 
 
 def test_progress_heartbeat_names_the_phase_while_silent(capsys):

@@ -11,6 +11,14 @@ package.  Bad input never produces a pandas or numpy traceback: every problem of
 is collected and reported at once in a :class:`CatalogError` that names the file, the
 row, the line and the field.
 
+A row that is well formed but is not an orbit of this model (perigee below
+:data:`MIN_PERIGEE_KM`, ``a`` above :data:`MAX_A_KM`, an epoch more than
+:data:`MAX_PROPAGATION_DAYS` from the start, or, for TLE and OMM, elements sgp4 rejects)
+is a problem too, unless the catalog is read with ``on_invalid="set aside"``: it then
+goes to ``Catalog.invalid``, for the candidate filters to act first
+(:func:`sdc_cvx.inputs.selection.select` reports only those it would keep).  A whole
+public catalogue always holds a few such element sets.
+
 Equation, table and part numbers are those of Cerf's paper [1]_; the design
 rationale is in ``docs/design.md``.
 
@@ -28,6 +36,7 @@ import io
 import math
 import numbers
 import os
+import re
 import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -86,15 +95,25 @@ class Catalog:
         and no start was given.
     source : str
         File path, ``"<DataFrame>"`` or ``"paper Table 5"``.
+    invalid : pandas.DataFrame or None
+        Rows set aside when read with ``on_invalid="set aside"``: element sets that are
+        not orbits of this model (perigee below :data:`MIN_PERIGEE_KM`, ``a`` above
+        :data:`MAX_A_KM`, rejected by sgp4, an epoch more than
+        :data:`MAX_PROPAGATION_DAYS` from the start).  Columns ``id``, ``name`` (when
+        the catalog has names), ``a_km``, ``e``, ``inc_deg``, ``altitude_km`` (as read,
+        NaN when unreadable) and ``problem`` (file, line, catalogue number and reason, in
+        words).  :func:`sdc_cvx.inputs.selection.select` reports those its filters keep
+        and never mentions the others.  None when nothing was set aside.
     """
 
     frame: pd.DataFrame
     start: pd.Timestamp | None
     source: str
+    invalid: pd.DataFrame | None = None
 
     # ------------------------------------------------------------------ constructors
     @classmethod
-    def from_csv(cls, path: str | os.PathLike, *, start=None) -> Catalog:
+    def from_csv(cls, path: str | os.PathLike, *, start=None, on_invalid="raise") -> Catalog:
         """Read and validate a CSV catalog.
 
         Parameters
@@ -102,10 +121,16 @@ class Catalog:
         path : str or path-like
             UTF-8 CSV file with a header line.  Required columns ``id, a_km, e,
             inc_deg, raan_deg``; optional ``name`` and ``epoch`` (ISO-8601, UTC when
-            naive); other columns are kept as strings.  Blank lines are skipped.
+            naive); other columns are kept as strings.  Blank lines are skipped.  The
+            column names are read whatever their case (``ID``, ``A_KM``), and the
+            fields may be separated by ``;`` or tabs when the header line has no comma
+            (:func:`csv_delimiter`); numbers take a decimal point.
         start : str or datetime-like, optional
-            Mission start date (UTC when naive).  Default: the latest epoch, or None
-            without epochs.
+            Mission start date (UTC when naive), within :data:`MAX_PROPAGATION_DAYS` of
+            the epochs.  Default: the latest epoch, or None without epochs.
+        on_invalid : {"raise", "set aside"}
+            Rows that are not orbits of this model (README, "Physical domain"): a
+            problem (default), or set aside in ``Catalog.invalid``.
 
         Returns
         -------
@@ -117,11 +142,13 @@ class Catalog:
             The file is missing, unreadable, empty, or any row is invalid.
         """
         source, text = read_text(path)
-        header, records = _read_csv(io.StringIO(text, newline=""), source)
-        return cls._from_records(header, records, source, start)
+        stream = io.StringIO(text, newline="")
+        header, records = _read_csv(stream, source, delimiter=csv_delimiter(text))
+        return cls._from_records(header, records, source, start, on_invalid)
 
     @classmethod
-    def from_frame(cls, frame: pd.DataFrame, *, source: str = "<DataFrame>", start=None) -> Catalog:
+    def from_frame(cls, frame: pd.DataFrame, *, source: str = "<DataFrame>", start=None,
+                   on_invalid="raise") -> Catalog:  # fmt: skip
         """Validate a DataFrame with the columns of a CSV catalog (see :meth:`from_csv`).
 
         Values may be strings (as read from a file) or numbers; ``epoch`` values may
@@ -146,7 +173,24 @@ class Catalog:
         def where(pos: int) -> str:
             return f"row {pos + 1} (index {_show(labels[pos])})"
 
-        return cls._validated(frame, source, where, start)
+        return cls._validated(frame, source, where, start, on_invalid=on_invalid)
+
+    @classmethod
+    def _from_rows(cls, frame, source, start, where_labels, *, flagged, on_invalid,
+                   reader_problems) -> Catalog:  # fmt: skip
+        """Validate the rows a format reader parsed (:mod:`sdc_cvx.inputs.formats`).
+
+        ``where_labels[k]`` locates row k in the file (``"line 12 (catalog number
+        25544)"``), ``flagged`` maps the rows the reader found not to be orbits of this
+        model to ``": reason"``, and ``reader_problems`` are raised with this
+        validation's in one error (sorted by line).
+        """
+
+        def where(pos: int) -> str:
+            return where_labels[pos]
+
+        return cls._validated(frame, source, where, start, flagged=flagged,
+                              on_invalid=on_invalid, reader_problems=reader_problems)  # fmt: skip
 
     @classmethod
     def paper_case(cls) -> Catalog:
@@ -160,7 +204,7 @@ class Catalog:
         return cls._from_records(header, records, PAPER_SOURCE, None)
 
     @classmethod
-    def _from_records(cls, header, records, source, start) -> Catalog:
+    def _from_records(cls, header, records, source, start, on_invalid="raise") -> Catalog:
         """Validate the rows read by :func:`_read_csv`."""
         width = len(header)
         ragged = {
@@ -175,25 +219,50 @@ class Catalog:
         def where(pos: int) -> str:
             return f"row {pos + 1} (line {lines[pos]})"
 
-        return cls._validated(raw, source, where, start, ragged)
+        return cls._validated(raw, source, where, start, ragged, on_invalid=on_invalid)
 
     @classmethod
-    def _validated(cls, raw, source, where, start, broken=None) -> Catalog:
+    def _validated(cls, raw, source, where, start, broken=None, *, flagged=None,
+                   on_invalid="raise", reader_problems=()) -> Catalog:  # fmt: skip
         """Check every row of ``raw`` and build the catalog, or raise all problems.
 
-        ``broken`` maps the positions of rows that cannot be read to their problem.
+        ``broken`` maps the positions of rows that cannot be read to their problem;
+        ``flagged`` those a reader found are not orbits of this model (sgp4 rejects
+        them) to the reason.  With ``on_invalid="set aside"`` such rows, and those
+        outside the physical domain (:func:`_check_domain`, :func:`_epoch_problem`), go
+        to ``Catalog.invalid`` instead of being problems.  ``reader_problems`` (a
+        reader's own, by line) are raised with this validation's, in one error.
         """
+        if on_invalid not in ON_INVALID:
+            raise ValueError(f"on_invalid must be one of {ON_INVALID}, got {on_invalid!r}")
         problems: list[str] = []
         _warn_unknown_columns(list(raw.columns), source)
-        columns = _check_rows(raw, source, where, problems, broken or {})
+        domain: dict[int, str] = dict(flagged or {})
+        columns = _check_rows(raw, source, where, problems, broken or {}, domain)
         start_ts = _parse_start(start, source, problems)
+        if columns.epochs is not None:  # also with other problems: one error says all
+            usable = [e for pos, e in enumerate(columns.epochs)
+                      if pos not in domain and e is not None]  # fmt: skip
+            if start_ts is None and usable:
+                start_ts = max(usable)
+            _check_epochs(columns.epochs, start_ts, start is not None, source, domain, problems)
+        aside = on_invalid == "set aside"
+        if not aside:
+            problems += [f"{source}, {where(pos)}{reason}" for pos, reason in domain.items()]
+        problems = _by_location([*reader_problems, *problems], source)
         if problems:
             raise CatalogError.collect(source, problems)
+        invalid = None
+        if domain:
+            invalid = _invalid_frame(raw, columns, domain, source, where)
+            good = np.ones(len(raw), dtype=bool)
+            good[list(domain)] = False
+            raw = raw.loc[good].reset_index(drop=True)
+            columns = columns.take(np.flatnonzero(good))
         frame = _build_frame(raw, columns)
-        if columns.epochs is not None:
-            start_ts = start_ts if start_ts is not None else max(columns.epochs)
+        if columns.epochs is not None and len(frame):
             _propagate(frame, start_ts)
-        return cls(frame=frame, start=start_ts, source=source)
+        return cls(frame=frame, start=start_ts, source=source, invalid=invalid)
 
     # ------------------------------------------------------------------ accessors
     @property
@@ -328,13 +397,28 @@ def read_text(path: str | os.PathLike) -> tuple[str, str]:
     return source, text
 
 
-def _read_csv(stream: Iterable[str], source: str):
+def csv_delimiter(text: str) -> str:
+    """The field separator of a CSV catalog: ``,`` unless the header line (the first that is
+    not blank) has none and has ``;`` or a tab (a spreadsheet's export in some locales)."""
+    for line in text.splitlines():
+        if line.strip():
+            if "," not in line:
+                for other in (";", "\t"):
+                    if other in line:
+                        return other
+            return ","
+    return ","
+
+
+def _read_csv(stream: Iterable[str], source: str, delimiter: str = ","):
     """Header and ``(first line, fields)`` records of a CSV text, blank lines skipped.
 
-    Raises a :class:`CatalogError` at once for an empty file, a file without data rows,
-    malformed CSV or a bad header (missing, duplicate or blank column names).
+    Column names that are known columns in another case (``ID``, ``A_KM``) are read as
+    those columns.  Raises a :class:`CatalogError` at once for an empty file, a file
+    without data rows, malformed CSV or a bad header (missing, duplicate or blank column
+    names).
     """
-    reader = csv.reader(stream)
+    reader = csv.reader(stream, delimiter=delimiter)
     header = None
     records = []
     line = 0
@@ -344,7 +428,7 @@ def _read_csv(stream: Iterable[str], source: str):
             if all(not field.strip() for field in fields):
                 continue
             if header is None:
-                header = [field.strip() for field in fields]
+                header = [_known_case(field.strip()) for field in fields]
             else:
                 records.append((first, fields))
     except csv.Error as exc:
@@ -358,6 +442,12 @@ def _read_csv(stream: Iterable[str], source: str):
     if problems:
         raise CatalogError.collect(source, problems)
     return header, records
+
+
+def _known_case(name: str) -> str:
+    """``name`` as the known column it names in any case (``"A_KM"`` -> ``"a_km"``)."""
+    lower = name.lower()
+    return lower if lower != name and lower in KNOWN_COLUMNS else name
 
 
 def _header_problems(columns: list, source: str) -> list[str]:
@@ -391,11 +481,25 @@ class _Values:
     names: list[str] | None = None
     epochs: list[pd.Timestamp] | None = None
 
+    def take(self, positions) -> _Values:
+        """The values of the rows at ``positions``, in that order."""
+        return _Values(
+            ids=[self.ids[k] for k in positions],
+            numbers={name: values[positions] for name, values in self.numbers.items()},
+            names=None if self.names is None else [self.names[k] for k in positions],
+            epochs=None if self.epochs is None else [self.epochs[k] for k in positions],
+        )
 
-def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broken) -> _Values:
+
+def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broken,
+                domain) -> _Values:  # fmt: skip
     """Convert and check every row; append problems to ``problems``.
 
     Rows in ``broken`` (position -> problem) are reported as such and not checked.
+    Rows in ``domain`` (position -> reason, a reader found them not to be orbits of this
+    model) are converted as far as they can be and not checked; rows whose only fault
+    is to be outside the physical domain (:func:`_check_domain`) are added to it, with
+    the reason as ``", field 'a_km': ..."``.
     """
     n = len(raw)
     values = _Values(ids=[""] * n, numbers={name: np.full(n, np.nan) for name in _CHECKS})
@@ -404,27 +508,105 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
     has_epoch = "epoch" in raw.columns
     epochs: list = [None] * n
     seen: dict[str, int] = {}
+    cells = {name: raw[name].tolist() for name in ("id", *_CHECKS)}  # .iat is slow
+    epoch_cells = raw["epoch"].tolist() if has_epoch else None
     for pos in range(n):
-        prefix = f"{source}, {where(pos)}"
         if pos in broken:
-            problems.append(f"{prefix}: {broken[pos]}")
+            problems.append(f"{source}, {where(pos)}: {broken[pos]}")
             continue
-        ident, error = _to_id(raw["id"].iat[pos])
+        ident, error = _to_id(cells["id"][pos])
         if not error and ident in seen:
             error = f"duplicate id {ident!r}, also in {where(seen[ident])}"
         seen.setdefault(ident, pos)
         values.ids[pos] = ident
         errors = {"id": error}
+        flagged = pos in domain
         for name, check in _CHECKS.items():
-            values.numbers[name][pos], errors[name] = _to_float(raw[name].iat[pos], check)
-        if not (errors["a_km"] or errors["e"]):
-            errors["a_km"] = _check_domain(values.numbers["a_km"][pos], values.numbers["e"][pos])
+            values.numbers[name][pos], errors[name] = _to_float(
+                cells[name][pos], _no_check if flagged else check
+            )
         if has_epoch:
-            epochs[pos], errors["epoch"] = _to_epoch(raw["epoch"].iat[pos])
-        problems += [f"{prefix}, field '{f}': {msg}" for f, msg in errors.items() if msg]
+            epochs[pos], errors["epoch"] = _to_epoch(epoch_cells[pos])
+        if flagged:
+            continue
+        if not (errors["a_km"] or errors["e"]):
+            outside = _check_domain(values.numbers["a_km"][pos], values.numbers["e"][pos])
+            if outside:
+                domain[pos] = f", field 'a_km': {outside}"
+        if any(errors.values()):
+            prefix = f"{source}, {where(pos)}"
+            problems += [f"{prefix}, field '{f}': {msg}" for f, msg in errors.items() if msg]
     if has_epoch:
-        values.epochs = _check_all_or_none(epochs, raw["epoch"], source, where, problems, broken)
+        values.epochs = _check_all_or_none(epochs, epoch_cells, source, where, problems, broken)
     return values
+
+
+def _no_check(value: float) -> None:
+    """The check of a value a reader already found is not an orbit of this model."""
+    return None
+
+
+MAX_PROPAGATION_DAYS = 3652.5
+"""Largest time [days] between an element set's epoch and the mission start (10 years,
+the longest mission, ``Mission.tmax_days``): the RAANs are moved to the start with J2
+alone, without drag or decay, which is meaningless over decades (a 2-digit TLE year
+read in the wrong century, a ``start`` typed with the wrong year)."""
+
+ON_INVALID = ("raise", "set aside")
+"""What to do with element sets that are not orbits of this model: raise a
+:class:`CatalogError`, or set them aside in ``Catalog.invalid`` (the command line: the
+candidate selection reports those it would keep)."""
+
+
+def _check_epochs(epochs, start, given: bool, source, domain, problems) -> None:
+    """Each epoch within :data:`MAX_PROPAGATION_DAYS` of ``start`` (others to ``domain``);
+    a given ``start`` that is that far from every epoch is a problem of its own."""
+    if start is None:
+        return
+    stamps = pd.DatetimeIndex(epochs)
+    days = np.abs((stamps - start).total_seconds().to_numpy() / SECONDS_PER_DAY)
+    usable = np.array([pos not in domain for pos in range(len(epochs))], dtype=bool)
+    usable &= ~np.isnan(days)  # an unreadable epoch is reported as such
+    if given and usable.any() and days[usable].min() > MAX_PROPAGATION_DAYS:
+        nearest = stamps[usable][int(np.argmin(days[usable]))]
+        problems.append(
+            f"{source}, argument 'start': {start.isoformat()} is {days[usable].min():,.0f} "
+            f"days ({days[usable].min() / 365.25:.1f} years) from the nearest epoch of the "
+            f"catalog ({nearest.isoformat()}); expected a start within "
+            f"{MAX_PROPAGATION_DAYS:g} days (10 years) of the epochs: the RAANs are moved "
+            f"to the start with J2 alone (no drag, no decay)"
+        )
+        return
+    for pos in np.flatnonzero(usable & (days > MAX_PROPAGATION_DAYS)):
+        domain[int(pos)] = (
+            f", field 'epoch': expected an epoch within {MAX_PROPAGATION_DAYS:g} days (10 "
+            f"years) of the mission start {start.isoformat()}, got {stamps[pos].isoformat()} "
+            f"({days[pos] / 365.25:.1f} years away: the RAAN would be moved with J2 alone)"
+        )
+
+
+def _invalid_frame(raw, columns: _Values, domain: dict, source: str, where) -> pd.DataFrame:
+    """The rows set aside (``Catalog.invalid``), in file order."""
+    positions = sorted(domain)
+    frame = pd.DataFrame({"id": [columns.ids[k] for k in positions]})
+    if columns.names is not None:
+        frame["name"] = [columns.names[k] for k in positions]
+    for name in ("a_km", "e", "inc_deg"):
+        frame[name] = columns.numbers[name][positions]
+    frame["altitude_km"] = frame["a_km"] - R_EARTH_KM
+    frame["problem"] = [f"{source}, {where(k)}{domain[k]}" for k in positions]
+    return frame
+
+
+def _by_location(problems: list[str], source: str) -> list[str]:
+    """Problems sorted by the row, line, record or segment they name (stable; the others,
+    such as a bad ``start`` argument, last)."""
+
+    def key(problem: str) -> float:
+        found = re.match(r", (?:row|line|record|segment) (\d+)", problem[len(source) :])
+        return int(found.group(1)) if found else math.inf
+
+    return sorted(problems, key=key)
 
 
 def _check_all_or_none(epochs, column, source, where, problems, broken):
@@ -543,6 +725,9 @@ def _to_id(value) -> tuple[str, str | None]:
 
 def _to_float(value, check) -> tuple[float, str | None]:
     """Finite float passing ``check``, or an error message."""
+    if type(value) is float and math.isfinite(value):  # the readers' values: fast path
+        error = check(value)
+        return (math.nan, error.format(got=_show(value))) if error else (value, None)
     if _is_blank(value):
         return math.nan, "expected a number, got a blank value"
     is_real = isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
@@ -551,7 +736,10 @@ def _to_float(value, check) -> tuple[float, str | None]:
             raise TypeError
         number = float(value)
     except (ValueError, TypeError, OverflowError):
-        return math.nan, f"expected a number, got {_show(value)}"
+        hint = ""
+        if isinstance(value, str) and re.fullmatch(r"\s*[+-]?\d+,\d+\s*", value):
+            hint = f" (a decimal comma? write {value.strip().replace(',', '.')})"
+        return math.nan, f"expected a number, got {_show(value)}{hint}"
     if math.isnan(number):
         return math.nan, f"expected a number, got {_show(value)} (NaN)"
     if not math.isfinite(number):
@@ -579,6 +767,8 @@ def _to_timestamp(value) -> pd.Timestamp | None:
 
 def _to_epoch(value) -> tuple[pd.Timestamp | None, str | None]:
     """Epoch of a row: (timestamp, None), (None, None) when blank, or (None, error)."""
+    if type(value) is pd.Timestamp and value.tz is not None and str(value.tz) == "UTC":
+        return value, None  # the readers' epochs: fast path
     if _is_blank(value):
         return None, None
     stamp = _to_timestamp(value)
@@ -626,8 +816,7 @@ def _build_frame(raw: pd.DataFrame, columns: _Values) -> pd.DataFrame:
 
 def _propagate(frame: pd.DataFrame, start: pd.Timestamp) -> None:
     """Move ``raan_deg`` from each row's epoch to ``start`` at the row's J2 rate (Eq. 7)."""
-    elapsed_days = np.array(
-        [(start - epoch).total_seconds() / SECONDS_PER_DAY for epoch in frame["epoch"]]
-    )
+    elapsed = start - pd.DatetimeIndex(frame["epoch"])
+    elapsed_days = elapsed.total_seconds().to_numpy() / SECONDS_PER_DAY
     raan = frame["raan_epoch_deg"].to_numpy() + frame["raan_rate_deg_per_day"] * elapsed_days
     frame["raan_deg"] = _wrap_deg(np.asarray(raan, dtype=float))

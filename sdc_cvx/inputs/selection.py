@@ -17,26 +17,41 @@ not cover:
   physical domain of the model (README, "Physical domain").
 
 Every dropped debris is reported with its reasons, in words, in a table.
+
+The filters act first: a catalog read with ``on_invalid="set aside"`` holds the element
+sets that are not orbits of this model in ``Catalog.invalid``
+(:data:`sdc_cvx.inputs.catalog.ON_INVALID`); those the filters drop are reported as
+dropped by the filters, like any other, and those the filters keep are dropped with the
+check ``invalid`` and the reader's reason (file, line, catalogue number), or refused
+with ``strict=True``.  So a selection inside a whole public catalogue works whatever
+else the file holds.
+
+Object types come from the names of a public catalogue (:func:`object_type`):
+``R/B`` is a rocket body, ``DEB`` a fragment, anything else a payload.
 """
 
 from __future__ import annotations
 
 import fnmatch
 import math
+import re
 from collections import Counter
 from collections.abc import Iterable
 
 import numpy as np
 import pandas as pd
 
-from ..physics.orbits import DEFAULT_MAX_ECCENTRICITY
+from ..errors import CatalogError
+from ..physics.orbits import DEFAULT_MAX_ECCENTRICITY, SECONDS_PER_DAY, raan_rate
 from .catalog import R_EARTH_KM, Catalog
 
 __all__ = [
     "CHECKS",
     "DEFAULT_MAX_ECCENTRICITY",
     "LEO_MAX_APOGEE_KM",
+    "OBJECT_TYPES",
     "POLAR_MARGIN_DEG",
+    "object_type",
     "select",
     "summary",
 ]
@@ -47,9 +62,31 @@ POLAR_MARGIN_DEG = 0.5
 LEO_MAX_APOGEE_KM = 2000.0
 """Orbits with an apogee altitude above this [km] are dropped (outside low Earth orbit)."""
 
-CHECKS = ("ids", "names", "excluded", "altitude", "inclination", "eccentricity", "near-polar",
-          "above-leo")  # fmt: skip
+CHECKS = ("ids", "names", "type", "excluded", "altitude", "inclination", "eccentricity",
+          "near-polar", "above-leo", "invalid")  # fmt: skip
 """Names of the checks, as in the ``checks`` column of the report."""
+
+OBJECT_TYPES = ("rocket-body", "debris", "payload")
+"""Object types :func:`object_type` tells from a name (``types`` of :func:`select`)."""
+
+_ROCKET_BODY = re.compile(r"R/B")
+_DEBRIS = re.compile(r"\bDEB\b")
+
+
+def object_type(name: str) -> str:
+    """The type of a catalogued object from its name, one of :data:`OBJECT_TYPES`.
+
+    ``"rocket-body"`` when the name holds ``R/B`` (``"SL-8 R/B"``, ``"SL-12 R/B(AUX
+    MOTOR)"``), ``"debris"`` when it holds the word ``DEB`` (``"COSMOS 2251 DEB"``,
+    ``"ARIANE 5 DEB (SYLDA)"``), else ``"payload"`` (the US catalogue's convention: a
+    payload goes by its own name).  Case-insensitive.
+    """
+    upper = str(name).upper()
+    if _ROCKET_BODY.search(upper):
+        return "rocket-body"
+    if _DEBRIS.search(upper):
+        return "debris"
+    return "payload"
 
 
 def select(
@@ -62,6 +99,8 @@ def select(
     names: Iterable[str] | str | None = None,
     exclude_ids: Iterable[str] | str | None = None,
     polar_margin_deg: float = POLAR_MARGIN_DEG,
+    types: Iterable[str] | str | None = None,
+    strict: bool = False,
 ) -> tuple[Catalog, pd.DataFrame]:
     """Candidates of ``catalog`` that pass every check, and a report of the others.
 
@@ -87,6 +126,12 @@ def select(
     polar_margin_deg : float
         Drop orbits with ``|inclination - 90| < polar_margin_deg`` (default 0.5 deg;
         0 keeps them).
+    types : str or iterable of str, optional
+        Keep the objects of these types (:data:`OBJECT_TYPES`, told from the name by
+        :func:`object_type`).
+    strict : bool
+        Raise when the filters keep an element set of ``catalog.invalid`` (not an orbit
+        of this model); default: drop it with the check ``invalid``.
 
     Returns
     -------
@@ -98,16 +143,35 @@ def select(
         catalog has names), ``altitude_km``, ``inc_deg``, ``e``, ``checks`` (the names
         of the failed checks among :data:`CHECKS`, comma-separated) and ``reason``
         (every reason in words, ``"; "``-separated, e.g. ``"altitude 950.2 km
-        outside [600, 900]"``).
+        outside [600, 900]"``).  The rows of ``catalog.invalid`` come after the
+        others; those the filters keep have the check ``invalid`` and, as reason, the
+        reader's problem (file, line, catalogue number and why).
 
     Raises
     ------
     ValueError
         A range with low > high or a non-finite bound, a negative eccentricity limit
         or margin, a pattern in ``ids`` or ``names`` that matches no debris of the
-        catalog (a typo, most likely), or ``names`` on a catalog without names.
+        catalog (a typo, most likely), an unknown type, or ``names`` or ``types`` on
+        a catalog without names.
+    CatalogError
+        With ``strict``: the filters keep element sets that are not orbits of this
+        model (every one named, with its line).
     """
     frame = catalog.frame
+    invalid = catalog.invalid if catalog.invalid is not None else frame.iloc[:0]
+    n_valid = len(frame)
+    if len(invalid):  # the filters act on both; the invalid rows are never kept
+        extra = invalid.drop(columns="problem").copy()
+        with np.errstate(all="ignore"):
+            rate = raan_rate(extra["a_km"].to_numpy() * 1000.0, extra["e"].to_numpy(),
+                             np.radians(extra["inc_deg"].to_numpy()))  # fmt: skip
+        extra["raan_rate_deg_per_day"] = np.degrees(rate) * SECONDS_PER_DAY
+        if "name" in frame.columns and "name" not in extra.columns:
+            extra["name"] = ""
+        columns = [c for c in ("id", "name") if c in frame.columns]
+        columns += ["a_km", "e", "inc_deg", "altitude_km", "raan_rate_deg_per_day"]
+        frame = pd.concat([frame[columns], extra[columns]], ignore_index=True)
     altitude = frame["altitude_km"].to_numpy(dtype=float)
     inc = frame["inc_deg"].to_numpy(dtype=float)
     ecc = frame["e"].to_numpy(dtype=float)
@@ -131,6 +195,15 @@ def select(
         matched = _matches(name_values, patterns, "names", fold=True)
         shown = _listed(patterns)
         drop(~matched, "names", lambda k: f"name {name_values[k]!r} matches none of {shown}")
+    wanted = _types(types)
+    if wanted:
+        if "name" not in frame.columns:
+            raise ValueError(f"types given, but {catalog.source} has no names to tell them by")
+        name_of = [str(value) for value in frame["name"]]
+        kinds = [object_type(value) for value in name_of]
+        shown = ", ".join(wanted)
+        other = np.array([kind not in wanted for kind in kinds], dtype=bool)
+        drop(other, "type", lambda k: f"type {kinds[k]} (name {name_of[k]!r}) is not {shown}")
     for pattern in _patterns(exclude_ids, "exclude_ids"):
         excluded = np.array([fnmatch.fnmatchcase(value, pattern) for value in id_values])
         drop(excluded, "excluded", lambda k, p=pattern: f"id {id_values[k]} excluded by {p!r}")
@@ -161,10 +234,19 @@ def select(
          lambda k: f"apogee altitude {apogee[k]:,.0f} km > {LEO_MAX_APOGEE_KM:,.0f} km (the J2 "
                    "drift strategy is planned for low Earth orbits)")  # fmt: skip
 
+    problems = []
+    for pos in range(n_valid, len(frame)):
+        if not reasons[pos]:  # kept by the filters, but not an orbit of this model
+            problems.append(invalid["problem"].iat[pos - n_valid])
+            reasons[pos].append(("invalid", problems[-1]))
+    if strict and problems:
+        raise CatalogError.collect(catalog.source, [
+            *problems, f"{catalog.source}: {len(problems)} element set(s) in the selection are "
+            "not orbits of this model (README, 'Physical domain'); narrow the selection, or "
+            "leave out strict (--strict) to drop them with a warning"])  # fmt: skip
     dropped = np.array([bool(found) for found in reasons], dtype=bool)
-    kept = Catalog(
-        frame=frame.loc[~dropped].reset_index(drop=True), start=catalog.start, source=catalog.source
-    )
+    kept_frame = catalog.frame.loc[~dropped[:n_valid]].reset_index(drop=True)
+    kept = Catalog(frame=kept_frame, start=catalog.start, source=catalog.source)
     report = frame.loc[dropped, [c for c in ("id", "name") if c in frame.columns]].copy()
     report["altitude_km"] = altitude[dropped]
     report["inc_deg"] = inc[dropped]
@@ -185,6 +267,18 @@ def summary(kept: Catalog, report: pd.DataFrame) -> str:
         return f"kept {len(kept)} of {total} candidates (none dropped)"
     listed = ", ".join(f"{counts[check]} {check}" for check in CHECKS if counts[check])
     return f"kept {len(kept)} of {total} candidates (dropped: {listed})"
+
+
+def _types(value) -> list[str]:
+    """The object types asked for, checked against :data:`OBJECT_TYPES`."""
+    if value is None:
+        return []
+    wanted = [value] if isinstance(value, str) else [str(item) for item in value]
+    unknown = [kind for kind in wanted if kind not in OBJECT_TYPES]
+    if unknown:
+        raise ValueError(f"types: unknown type(s) {_listed(unknown)}; expected "
+                         f"{', '.join(OBJECT_TYPES)} (told from the name: R/B, DEB)")  # fmt: skip
+    return list(dict.fromkeys(wanted))
 
 
 def _patterns(value, what: str) -> list[str]:

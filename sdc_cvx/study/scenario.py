@@ -7,6 +7,8 @@ A scenario file has four tables, each optional::
     format = "csv"             # csv | tle | omm | gtoc9; default from the extension
     start = 2020-05-24T00:00:00Z  # the date the RAANs and day 0 refer to (UTC when
                                # naive; an ISO string is fine); default the latest epoch
+    strict = false             # true: refuse the catalog when the selection keeps an
+                               # element set that is not an orbit of this model
     [mission]                  # exactly the fields of Mission
     n = 5
     tmax_days = 365.25
@@ -24,6 +26,7 @@ A scenario file has four tables, each optional::
     max_eccentricity = 0.05    # the default; near-polar orbits are always dropped
     ids = ["43*"]              # shell-style patterns
     names = ["cosmos 2251*"]   # case-insensitive
+    types = ["rocket-body"]    # rocket-body (R/B in the name), debris (DEB), payload
     exclude_ids = ["4350?"]
 
 A fifth table, ``[campaign]``, makes the scenario a removal campaign (``python -m sdc_cvx
@@ -69,7 +72,7 @@ from ..inputs.campaign import DEFAULT_PERIOD_DAYS, Campaign
 from ..inputs.catalog import Catalog
 from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
-from ..inputs.selection import DEFAULT_MAX_ECCENTRICITY, select
+from ..inputs.selection import DEFAULT_MAX_ECCENTRICITY, OBJECT_TYPES, select
 from ..milp.types import BACKENDS, SolverOptions
 from .toml import read_toml, toml_value
 
@@ -110,6 +113,9 @@ class Selection:
     ids, names, exclude_ids : tuple of str
         Shell-style patterns: keep the ids / names (case-insensitive) matching one
         (none given: every debris), drop the ids matching one.
+    types : tuple of str
+        Keep the objects of these types (``rocket-body``, ``debris``, ``payload``, told
+        from the name: :func:`sdc_cvx.inputs.selection.object_type`); none: every type.
     """
 
     altitude_km: tuple[float, float] | None = None
@@ -118,6 +124,7 @@ class Selection:
     ids: tuple[str, ...] = ()
     names: tuple[str, ...] = ()
     exclude_ids: tuple[str, ...] = ()
+    types: tuple[str, ...] = ()
 
     def __post_init__(self):
         problems = []
@@ -130,6 +137,9 @@ class Selection:
         for name in ("ids", "names", "exclude_ids"):
             if any(not pattern.strip() for pattern in getattr(self, name)):
                 problems.append(f"{name} must not hold an empty pattern, got {getattr(self, name)}")
+        unknown = [kind for kind in self.types if kind not in OBJECT_TYPES]
+        if unknown:
+            problems.append(f"types must hold {', '.join(OBJECT_TYPES)}, got {list(unknown)}")
         if problems:
             raise ValueError("; ".join(problems))
 
@@ -139,18 +149,21 @@ class Selection:
                 for key, value in dataclasses.asdict(self).items()
                 if value is not None and value != ()}  # fmt: skip
 
-    def apply(self, catalog: Catalog):
+    def apply(self, catalog: Catalog, *, strict: bool = False):
         """``(kept, report)`` of :func:`sdc_cvx.inputs.selection.select` with these filters.
 
         Raises
         ------
         ValueError
-            A pattern of ``ids`` or ``names`` matches no debris, or ``names`` on a
-            catalog without names.
+            A pattern of ``ids`` or ``names`` matches no debris, or ``names`` or
+            ``types`` on a catalog without names.
+        CatalogError
+            With ``strict``: the filters keep an element set of ``catalog.invalid``.
         """
         return select(catalog, altitude_km=self.altitude_km, inclination_deg=self.inclination_deg,
                       eccentricity_max=self.max_eccentricity, ids=self.ids or None,
-                      names=self.names or None, exclude_ids=self.exclude_ids or None)  # fmt: skip
+                      names=self.names or None, exclude_ids=self.exclude_ids or None,
+                      types=self.types or None, strict=strict)  # fmt: skip
 
 
 class _Limit(float):
@@ -158,7 +171,7 @@ class _Limit(float):
 
 
 _TABLES = ("catalog", "mission", "solver", "selection", "campaign")
-_CATALOG_KEYS = ("path", "format", "start")
+_CATALOG_KEYS = ("path", "format", "start", "strict")
 _MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
 _SELECTION_KEYS = tuple(f.name for f in dataclasses.fields(Selection))
@@ -167,7 +180,7 @@ _CAMPAIGN_KEYS = ("launch_days", "missions", "first_launch_day", "period_days", 
 _KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS,
          "selection": _SELECTION_KEYS, "campaign": _CAMPAIGN_KEYS}  # fmt: skip
 _TYPES = {
-    "catalog": {"path": str, "format": str, "start": object},  # start: checked by _start
+    "catalog": {"path": str, "format": str, "start": object, "strict": bool},  # start: _start
     "mission": typing.get_type_hints(Mission),
     "solver": typing.get_type_hints(SolverOptions),
     "selection": typing.get_type_hints(Selection) | {"max_eccentricity": _Limit | None},
@@ -211,6 +224,9 @@ class Scenario:
     campaign : Campaign or None
         The ``[campaign]`` table (``python -m sdc_cvx campaign``), its missions built
         from ``mission``; None for a single mission.
+    catalog_strict : bool
+        True: refuse the catalog when the selection keeps an element set that is not an
+        orbit of this model; False (default): drop it with a warning line.
     source : Path or None
         The scenario file read, if any.  Not compared: two scenarios with the same
         content are equal wherever they were read from.
@@ -224,6 +240,7 @@ class Scenario:
     selection: Selection = field(default_factory=Selection)
     campaign: Campaign | None = None
     source: Path | None = field(default=None, compare=False)
+    catalog_strict: bool = False
 
     # ------------------------------------------------------------------ reading
     @classmethod
@@ -259,12 +276,13 @@ class Scenario:
         """
         return apply_overrides(self, changes, origin="overrides")
 
-    def load_catalog(self) -> Catalog:
+    def load_catalog(self, *, on_invalid: str = "raise") -> Catalog:
         """The debris catalog (the paper's Table 5 when ``catalog_path`` is None).
 
         Its RAANs are at ``catalog_start`` (default: the latest epoch); a catalog without
         epochs takes them as they are, at that date.  The candidate filters are not
-        applied: see :meth:`Selection.apply`.
+        applied: see :meth:`select_candidates`, which reads with ``on_invalid="set
+        aside"`` so that the filters act first.
 
         Raises
         ------
@@ -280,7 +298,25 @@ class Scenario:
             raise ScenarioError.collect(
                 self._where(), [_unsupported(self.catalog_format, self.catalog_path, chosen=False)]
             )
-        return reader(self.catalog_path, start=self.catalog_start)
+        return reader(self.catalog_path, start=self.catalog_start, on_invalid=on_invalid)
+
+    def select_candidates(self):
+        """``(kept, report)``: the catalog read, then the candidate filters, as ``run`` does.
+
+        The filters act first: element sets that are not orbits of this model are
+        reported only when the filters keep them (check ``invalid`` in the report), or
+        refused when ``catalog_strict``.
+
+        Raises
+        ------
+        CatalogError
+            The file fails the catalog's validation (or, strict, the selection keeps an
+            element set that is not an orbit of this model).
+        ValueError
+            A pattern matches no debris (see :meth:`Selection.apply`).
+        """
+        catalog = self.load_catalog(on_invalid="set aside")
+        return self.selection.apply(catalog, strict=self.catalog_strict)
 
     # ------------------------------------------------------------------ writing
     def to_dict(self) -> dict:
@@ -300,6 +336,8 @@ class Scenario:
         }
         if self.catalog_start is not None:
             data["catalog"]["start"] = self.catalog_start.isoformat()
+        if self.catalog_strict:
+            data["catalog"]["strict"] = True
         if self.selection.to_dict():
             data["selection"] = self.selection.to_dict()
         if self.campaign is not None:
@@ -406,13 +444,17 @@ def _build(data: Mapping, where: str, *, base: Path, source: Path | None) -> Sce
     mission = _make(Mission, "mission", tables.get("mission", {}), problems)
     solver = _make(SolverOptions, "solver", tables.get("solver", {}), problems)
     selection = _make(Selection, "selection", tables.get("selection", {}), problems)
+    strict = catalog.get("strict", False)
+    if strict and catalog_path is None:
+        problems.append(f"catalog.strict needs catalog.path ({PAPER_CASE} is all orbits)")
     campaign = None
     if "campaign" in tables and mission is not None:
         campaign = _campaign(tables["campaign"], mission, problems)
     if problems:
         raise ScenarioError.collect(where, problems)
     return Scenario(catalog_path, catalog_format, mission, solver, catalog_start=start,
-                    selection=selection, campaign=campaign, source=source)  # fmt: skip
+                    selection=selection, campaign=campaign, source=source,
+                    catalog_strict=strict)  # fmt: skip
 
 
 def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign | None:
@@ -632,7 +674,8 @@ def _dotted_name(name: str) -> str | None:
     """Dotted key of an override name, or None if unknown."""
     aliases = {"catalog": "catalog.path", "catalog_path": "catalog.path",
                "format": "catalog.format", "catalog_format": "catalog.format",
-               "start": "catalog.start", "catalog_start": "catalog.start"}  # fmt: skip
+               "start": "catalog.start", "catalog_start": "catalog.start",
+               "strict": "catalog.strict", "catalog_strict": "catalog.strict"}  # fmt: skip
     if name in aliases:
         return aliases[name]
     if "." in name:

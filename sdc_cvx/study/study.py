@@ -343,8 +343,18 @@ def _resolve_paths(flat: dict, base_dir: Path) -> dict:
 
 
 def _value(scenario: Scenario, dotted: str):
+    """The value of a dotted key in a scenario, also when ``to_dict`` leaves it out (a
+    selection filter or ``catalog.strict`` at its default)."""
     table, _, key = dotted.partition(".")
-    return scenario.to_dict()[table][key]
+    values = scenario.to_dict().get(table, {})
+    if key in values:
+        return values[key]
+    if dotted == "catalog.strict":
+        return scenario.catalog_strict
+    if table == "selection":
+        value = getattr(scenario.selection, key)
+        return list(value) if isinstance(value, tuple) else value
+    return None
 
 
 def _short_names(parameters: Sequence[str]) -> dict[str, str]:

@@ -53,7 +53,7 @@ def solve_scenario(scenario_toml: str, key: str = "") -> dict:
         data = tomllib.loads(scenario_toml)
         scenario = Scenario().with_overrides(**_flatten(data))
         row["backend"] = scenario.solver.backend
-        catalog, _ = scenario.selection.apply(scenario.load_catalog())  # as `run` does
+        catalog, _ = scenario.select_candidates()  # as `run` does
         row["method"] = scenario.solver.method
         solution = solve(catalog, scenario.mission, solver=scenario.solver)
         row.update(

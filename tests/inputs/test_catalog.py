@@ -391,3 +391,40 @@ def test_subset_single_string_id_and_empty_selection():
     assert Catalog.paper_case().subset("10").ids == ("10",)
     with pytest.raises(CatalogError, match="at least one debris id"):
         Catalog.paper_case().subset([])
+
+
+# ---------------------------------------------------------------------- spreadsheet CSV
+@pytest.mark.parametrize(
+    "text",
+    [
+        "ID,A_KM,E,INC_DEG,RAAN_DEG\n1,7000,0.001,98,10\n2,7100,0.001,98.2,20\n",
+        "id;a_km;e;inc_deg;raan_deg\n1;7000;0.001;98;10\n2;7100;0.001;98.2;20\n",
+        "Id\tA_km\te\tinc_deg\tRAAN_deg\n1\t7000\t0.001\t98\t10\n2\t7100\t0.001\t98.2\t20\n",
+    ],
+    ids=["upper-case", "semicolons", "tabs"],
+)
+def test_upper_case_and_semicolon_headers_are_read(tmp_path, text):
+    """Issue 20: a spreadsheet's export is read as the plain CSV it stands for."""
+    cat = Catalog.from_csv(write(tmp_path, text))
+    assert cat.ids == ("1", "2")
+    assert list(cat.frame["a_km"]) == [7000.0, 7100.0]
+    assert list(cat.frame["raan_deg"]) == [10.0, 20.0]
+
+
+def test_decimal_comma_names_the_fix(tmp_path):
+    message = error_of(tmp_path, "id;a_km;e;inc_deg;raan_deg\n1;7000,5;0.001;98;10\n")
+    assert "row 1 (line 2), field 'a_km': expected a number, got '7000,5' (a decimal comma? " \
+        "write 7000.5)" in message  # fmt: skip
+
+
+def test_far_epoch_and_bad_field_come_in_one_error(tmp_path):
+    """Issue 20: an epoch 60 years before the others and a bad number are one error (not
+    one, then the other once the first is fixed)."""
+    text = (f"{HEADER},epoch\n1,7000,0,98,0,1960-05-24T00:00:00Z\n2,7000,0,x,0,2020-05-24\n"
+            "3,7000,0,98,0,2020-05-24\n")  # fmt: skip
+    message = error_of(tmp_path, text)
+    assert message.startswith("2 problems in")
+    assert "row 1 (line 2), field 'epoch': expected an epoch within 3652.5 days (10 years) of " \
+        "the mission start 2020-05-24T00:00:00+00:00, got 1960-05-24T00:00:00+00:00 (60.0 " \
+        "years away" in message  # fmt: skip
+    assert "row 2 (line 3), field 'inc_deg': expected a number, got 'x'" in message

@@ -123,6 +123,37 @@ NEAR_SSO = [
     ("T", 720.0, 98.30, 57.0),
 ]
 
+# Prograde and near-polar clusters (issue 20), shaped on the public catalogue's rocket
+# bodies: the J2 rates are negative (prograde: the RAANs regress) and Table 3's drift
+# sides are stated by rate, so these check the drift side and inclination rules away from
+# the retrograde SSO cases above.
+# SL-16-like, 71 deg, ~840 km: rates about -2.11 deg/day, a drift orbit 400 km lower moves
+# the RAAN 0.5 deg/day faster
+INC71 = [
+    ("A", 835.0, 70.86, 10.0),
+    ("B", 845.0, 70.95, 25.0),
+    ("C", 828.0, 71.00, 40.0),
+    ("D", 850.0, 70.90, 18.0),
+    ("E", 840.0, 70.98, 32.0),
+]
+# SL-8-like, 83 deg, ~960 km: rates about -0.75 deg/day
+INC83 = [
+    ("F", 950.0, 82.55, 110.0),
+    ("G", 975.0, 82.95, 112.0),
+    ("H", 930.0, 82.70, 125.0),
+    ("I", 990.0, 82.85, 106.0),
+    ("J", 960.0, 82.60, 118.0),
+]
+# Near-polar (Iridium-like, 86.4 deg, ~780 km): rates about -0.3 deg/day, so a drift orbit
+# changes the rate little and gaps of a few degrees take months
+POLAR = [
+    ("K", 780.0, 86.35, 200.0),
+    ("L", 781.0, 86.45, 204.0),
+    ("M", 776.0, 86.40, 208.0),
+    ("N", 785.0, 86.55, 201.5),
+    ("O", 779.0, 86.30, 206.0),
+]
+
 
 @dataclass(frozen=True)
 class Case:
@@ -153,6 +184,9 @@ CASES = [
     Case("sso4-n3-250d", tuple(NEAR_SSO[:4]), 3, 250.0, "binding"),
     Case("sso5-n3-150d", tuple(NEAR_SSO), 3, 150.0, "binding"),
     Case("sso4-n4-365d", tuple(NEAR_SSO[:4]), 4, 365.0, "binding"),
+    Case("inc71-n3-150d", tuple(INC71), 3, 150.0, "binding"),
+    Case("inc83-n3-250d", tuple(INC83), 3, 250.0, "binding"),
+    Case("polar86-n3-120d", tuple(POLAR), 3, 120.0, "slack"),
 ]
 CASE_PARAMS = [pytest.param(case, id=case.name) for case in CASES]
 

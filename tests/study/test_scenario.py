@@ -355,11 +355,22 @@ def test_start_and_selection_round_trip_through_to_toml(tmp_path, debris_csv):
 def test_start_moves_the_raans_of_a_catalog_with_epochs(tmp_path):
     text = f'[catalog]\npath = "{GTOC9}"\nformat = "gtoc9"\n'
     latest = load(write(tmp_path, text)).load_catalog()
-    scenario = load(write(tmp_path, text + "start = 2000-01-01T00:00:00Z\n"))
+    scenario = load(write(tmp_path, text + "start = 2059-06-01T00:00:00Z\n"))  # epochs 2060
     catalog = scenario.load_catalog()
-    assert catalog.start == pd.Timestamp("2000-01-01T00:00:00Z") != latest.start
+    assert catalog.start == pd.Timestamp("2059-06-01T00:00:00Z") != latest.start
     assert not np.allclose(catalog.frame["raan_deg"], latest.frame["raan_deg"])
     assert load(write(tmp_path, scenario.to_toml())).load_catalog().start == catalog.start
+
+
+@pytest.mark.requires_shared_data("gtoc9/debris_data.txt")
+def test_a_start_decades_from_the_epochs_is_refused(tmp_path):
+    """GTOC9's epochs are in 2060: a start in 2000 would move each RAAN with J2 alone for
+    60 years (issue 20); refused, naming the argument and the nearest epoch."""
+    text = f'[catalog]\npath = "{GTOC9}"\nformat = "gtoc9"\nstart = 2000-01-01T00:00:00Z\n'
+    with pytest.raises(CatalogError) as caught:
+        load(write(tmp_path, text)).load_catalog()
+    assert "argument 'start': 2000-01-01T00:00:00+00:00 is 21," in str(caught.value)
+    assert "(60.0 years) from the nearest epoch of the catalog (2060-" in str(caught.value)
 
 
 @pytest.mark.parametrize(
@@ -426,3 +437,29 @@ def test_to_dict_has_start_and_selection_only_when_set(debris_csv):
     assert data["catalog"]["start"] == "2020-06-01T10:00:00+00:00"
     assert data["selection"] == {"max_eccentricity": 0.0, "exclude_ids": ["8"]}
     json.dumps(data)  # JSON-ready
+
+
+def test_selection_types_and_catalog_strict_round_trip(tmp_path, debris_csv):
+    text = (f'[catalog]\npath = "{debris_csv}"\nstrict = true\n'
+            '[selection]\ntypes = ["rocket-body", "debris"]\nnames = ["SL-8 R/B*"]\n')  # fmt: skip
+    scenario = load(write(tmp_path, text))
+    assert scenario.catalog_strict is True
+    assert scenario.selection.types == ("rocket-body", "debris")
+    again = load(write(tmp_path, scenario.to_toml(), "again.toml"))
+    assert again == scenario and again.catalog_strict
+    assert "strict" not in Scenario().to_dict()["catalog"]  # unset: the sweep's sha as before
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ('[selection]\ntypes = ["rocket"]\n', "selection.types must hold rocket-body, debris, "
+         "payload, got ['rocket']"),
+        ("[catalog]\nstrict = 1\n", "catalog.strict must be a boolean"),
+        ("[catalog]\nstrict = true\n", "catalog.strict needs catalog.path"),
+    ],
+)  # fmt: skip
+def test_bad_types_and_strict_name_the_key(tmp_path, text, expected):
+    with pytest.raises(ScenarioError) as caught:
+        load(write(tmp_path, text))
+    assert expected in str(caught.value)

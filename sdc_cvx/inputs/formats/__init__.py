@@ -30,7 +30,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ...errors import CatalogError
-from ..catalog import Catalog
+from ..catalog import Catalog, csv_delimiter
 from . import csv as csv_format
 from . import gtoc9, omm, tle
 from ._common import _fail, _lines, brouwer_a_km
@@ -141,10 +141,13 @@ def _sniff_text(text: str) -> str | None:
         return "omm"
     if any(tle._tle_pair(a, b) for a, b in zip(lines, lines[1:], strict=False)):
         return "tle"
-    header = {field.strip() for field in next(stdlib_csv.reader([lines[0]]), [])}
+    delimiter = csv_delimiter(lines[0])
+    header = {
+        field.strip() for field in next(stdlib_csv.reader([lines[0]], delimiter=delimiter), [])
+    }
     if {"NORAD_CAT_ID", "MEAN_MOTION"} <= {name.upper() for name in header}:
         return "omm"
-    if {"id", "a_km"} <= header:
+    if {"id", "a_km"} <= {name.lower() for name in header}:
         return "csv"
     for line in lines[:2]:
         fields = line.replace(",", " ").split()
@@ -161,7 +164,8 @@ def sniff_format(path: str | os.PathLike) -> str | None:
     TLE: a line starting with ``"1 "`` followed by one starting with ``"2 "`` with the
     same catalog number; OMM:
     XML (``<``), JSON (``[``, ``{``), KVN (``CCSDS_OMM_VERS``) or a CSV header with
-    ``NORAD_CAT_ID`` and ``MEAN_MOTION``; csv: a header with ``id`` and ``a_km``;
+    ``NORAD_CAT_ID`` and ``MEAN_MOTION``; csv: a header with ``id`` and ``a_km`` (any
+    case, separated by ``,``, or ``;`` or tabs: :func:`~sdc_cvx.inputs.catalog.csv_delimiter`);
     gtoc9: 8 numbers on one of the first two lines.
     """
     try:
@@ -172,7 +176,8 @@ def sniff_format(path: str | os.PathLike) -> str | None:
     return _sniff_text(head.decode("utf-8-sig", errors="replace"))
 
 
-def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=None) -> Catalog:
+def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=None,
+                 on_invalid: str = "raise") -> Catalog:  # fmt: skip
     """Read a debris catalog in any supported format.
 
     Parameters
@@ -185,6 +190,10 @@ def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=No
         ``.kvn``, ``.omm``).
     start : str or datetime-like, optional
         Mission start date (UTC when naive); default the latest epoch.
+    on_invalid : {"raise", "set aside"}
+        Element sets that are not orbits of this model (README, "Physical domain"):
+        problems (default), or set aside in ``Catalog.invalid``, for the candidate
+        selection to report those it keeps (:func:`sdc_cvx.inputs.selection.select`).
 
     Raises
     ------
@@ -201,4 +210,4 @@ def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=No
     reader = READERS.get(str(format).lower())
     if reader is None:
         _fail(source, f"unknown catalog format {format!r}; expected one of {', '.join(FORMATS)}")
-    return reader(path, start=start)
+    return reader(path, start=start, on_invalid=on_invalid)

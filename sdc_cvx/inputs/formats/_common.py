@@ -71,16 +71,43 @@ def _a_problem(a_km: float, mean_motion: float) -> str | None:
     )
 
 
-def _catalog(rows: list[dict], source: str, start, problems: list[str], what: str) -> Catalog:
-    """Validated catalog of ``rows``, or every problem raised."""
+def _catalog(rows: list[dict], source: str, start, problems: list[str], what: str, *,
+             where: list[str], flagged: dict[int, str] | None = None,
+             on_invalid: str = "raise", numbered: bool = True) -> Catalog:  # fmt: skip
+    """Validated catalog of ``rows``, or every problem raised at once.
+
+    ``where[k]`` locates row k in the file; ``flagged`` maps the rows that are not
+    orbits of this model (sgp4 rejects them) to ``": reason"``.  The reader's own
+    ``problems`` and those of the catalog's validation (perigee, epochs, ...) are raised
+    together, sorted by line: one error names every problem of the file.
+    """
     if not rows and not problems:
         problems.append(f"{source}: no {what} found")
-    if problems:
+    if not rows:
         raise CatalogError.collect(source, _by_line(problems, source))
+    first = {}  # the repeats of an id are the reader's problem (_duplicates), said once
+    for k, row in enumerate(rows):
+        first.setdefault(row["id"], k)
+    if len(first) < len(rows):
+        keep = sorted(first.values())
+        position = {k: i for i, k in enumerate(keep)}
+        flagged = {position[k]: why for k, why in (flagged or {}).items() if k in position}
+        rows, where = [rows[k] for k in keep], [where[k] for k in keep]
     frame = pd.DataFrame(rows)
     if "name" in frame.columns and not frame["name"].astype(bool).any():
         frame = frame.drop(columns="name")
-    return Catalog.from_frame(frame, source=source, start=start)
+    if numbered:  # the catalogue number beside the line: what people search the file for
+        labels = zip(where, rows, strict=True)
+        where = [f"{label} (catalog number {row['id']})" for label, row in labels]
+    return Catalog._from_rows(frame, source, start, where, flagged=flagged or {},
+                              on_invalid=on_invalid, reader_problems=problems)  # fmt: skip
+
+
+def kozai_a_km(mean_motion_rev_per_day: float) -> float:
+    """``a = (MU_EARTH / n**2) ** (1/3)`` [km] of a raw (Kozai) mean motion: the size of an
+    element set sgp4 rejects, for the candidate filters only."""
+    n = mean_motion_rev_per_day * 2.0 * math.pi / 86400.0
+    return (MU_EARTH / n**2) ** (1.0 / 3.0) / 1000.0
 
 
 def _by_line(problems: list[str], source: str) -> list[str]:

@@ -8,6 +8,6 @@ import os
 from ..catalog import Catalog
 
 
-def read_csv(path: str | os.PathLike, *, start=None) -> Catalog:
+def read_csv(path: str | os.PathLike, *, start=None, on_invalid: str = "raise") -> Catalog:
     """Read and validate a CSV catalog (:meth:`Catalog.from_csv`)."""
-    return Catalog.from_csv(path, start=start)
+    return Catalog.from_csv(path, start=start, on_invalid=on_invalid)

@@ -30,7 +30,7 @@ def _gtoc9_checks():
     )
 
 
-def read_gtoc9(path: str | os.PathLike, *, start=None) -> Catalog:
+def read_gtoc9(path: str | os.PathLike, *, start=None, on_invalid: str = "raise") -> Catalog:
     """Read the GTOC9 debris file (``debris_data.txt``, or the official ``debris.csv``).
 
     One debris per line, 8 numbers separated by blanks or tabs (commas are accepted
@@ -93,7 +93,8 @@ def read_gtoc9(path: str | os.PathLike, *, start=None) -> Catalog:
     if not rows and not problems:
         problems.append(f"{source}: no GTOC9 debris lines (8 numbers each)")
     _duplicates(rows, where, source, problems)
-    return _catalog(rows, source, start, problems, "GTOC9 debris lines")
+    return _catalog(rows, source, start, problems, "GTOC9 debris lines", where=where,
+                    on_invalid=on_invalid, numbered=False)  # fmt: skip
 
 
 def _gtoc9_float(text: str) -> float | None:

@@ -30,6 +30,7 @@ from ._common import (
     _sgp4_problem,
     _short,
     brouwer_a_km,
+    kozai_a_km,
 )
 
 # ---------------------------------------------------------------------- OMM
@@ -264,7 +265,7 @@ def _omm_fields(fields: dict, prefix: str, problems: list[str]):
     return strings, checked, epoch
 
 
-def read_omm(path: str | os.PathLike, *, start=None) -> Catalog:
+def read_omm(path: str | os.PathLike, *, start=None, on_invalid: str = "raise") -> Catalog:
     """Read CCSDS Orbit Mean-Elements Messages: CSV, XML, JSON (CelesTrak style) or KVN.
 
     The kind is told from the content: XML starts with ``<``, JSON with ``[`` or
@@ -291,7 +292,7 @@ def read_omm(path: str | os.PathLike, *, start=None) -> Catalog:
         _fail(source, "empty file (no OMM records)")
     kind, records = _omm_records(text, source)
     problems: list[str] = []
-    rows, where = [], []
+    rows, where, flagged = [], [], {}
     for label, fields in records:
         prefix = f"{source}, {label}"
         checked = _omm_fields(fields, prefix, problems)
@@ -305,11 +306,10 @@ def read_omm(path: str | os.PathLike, *, start=None) -> Catalog:
             problems.append(f"{prefix}: sgp4 cannot read the record ({exc})")
             continue
         problem = _sgp4_problem(satrec)
-        a_km = None if problem else brouwer_a_km(satrec)
+        a_km = kozai_a_km(values["MEAN_MOTION"]) if problem else brouwer_a_km(satrec)
         problem = problem or _a_problem(a_km, values["MEAN_MOTION"])
         if problem:
-            problems.append(f"{prefix} (catalog number {values['NORAD_CAT_ID']}): {problem}")
-            continue
+            flagged[len(rows)] = f": {problem}"
         elements = {
             "e": values["ECCENTRICITY"],
             "inc_deg": values["INCLINATION"],
@@ -322,4 +322,5 @@ def read_omm(path: str | os.PathLike, *, start=None) -> Catalog:
                                  elements, strings["OBJECT_ID"]))  # fmt: skip
         where.append(label)
     _duplicates(rows, where, source, problems)
-    return _catalog(rows, source, start, problems, f"OMM records ({kind})")
+    return _catalog(rows, source, start, problems, f"OMM records ({kind})", where=where,
+                    flagged=flagged, on_invalid=on_invalid)  # fmt: skip

@@ -3,10 +3,11 @@ for the semi-major axis convention)."""
 
 from __future__ import annotations
 
+import calendar
+import functools
 import math
 import os
 import re
-from decimal import Decimal, InvalidOperation
 
 import pandas as pd
 from sgp4.api import Satrec
@@ -22,6 +23,7 @@ from ._common import (
     _sgp4_problem,
     _short,
     brouwer_a_km,
+    kozai_a_km,
 )
 
 TLE_LINE_LENGTH = 69
@@ -30,8 +32,11 @@ TLE_LINE_LENGTH = 69
 # ---------------------------------------------------------------------- TLE
 def tle_checksum(line: str) -> int:
     """TLE checksum of a line: digits of columns 1-68 summed, each '-' counting 1, mod 10."""
-    body = line[:68]
-    return (sum(int(char) for char in body if char in "0123456789") + body.count("-")) % 10
+    body = _NOT_COUNTED.sub("", line[:68]).replace("-", "1")
+    return (sum(body.encode("ascii")) - 48 * len(body)) % 10  # '0' is byte 48
+
+
+_NOT_COUNTED = re.compile(r"[^0-9-]")
 
 
 _DECIMAL = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)\Z")
@@ -85,16 +90,23 @@ def _tle_epoch(text: str):
         return None, expected
     year = int(year_text)
     year += 1900 if year >= 57 else 2000  # the TLE convention (Sputnik, 1957)
-    try:
-        day = Decimal(day_text)
-    except InvalidOperation:
-        return None, expected
-    first = pd.Timestamp(year=year, month=1, day=1, tz="UTC")
-    days_in_year = 366 if first.is_leap_year else 365
-    if not 1 <= day < days_in_year + 1:
+    whole, _, fraction = day_text.partition(".")
+    days_in_year = 366 if calendar.isleap(year) else 365
+    # exact integer arithmetic (as Decimal, half to even), then one Timestamp
+    scale = 10 ** len(fraction)
+    numerator = (int(whole) * scale + int(fraction or "0") - scale) * 86_400_000_000_000
+    nanoseconds, rest = divmod(numerator, scale)
+    if 2 * rest > scale or (2 * rest == scale and nanoseconds % 2):
+        nanoseconds += 1
+    if not 0 <= numerator < days_in_year * 86_400_000_000_000 * scale:
         return None, f"{expected}; day {day_text} is not in [1, {days_in_year + 1})"
-    nanoseconds = int(((day - 1) * 86_400_000_000_000).to_integral_value())
-    return first + pd.Timedelta(nanoseconds, unit="ns"), None
+    return pd.Timestamp(_year_start_ns(year) + nanoseconds, tz="UTC"), None
+
+
+@functools.cache
+def _year_start_ns(year: int) -> int:
+    """1 January of ``year``, 00:00 UTC, in nanoseconds since 1970."""
+    return pd.Timestamp(year=year, month=1, day=1, tz="UTC").value
 
 
 _ALPHA5 = "ABCDEFGHJKLMNPQRSTUVWXYZ"  # Alpha-5: I and O are not used
@@ -199,7 +211,8 @@ def _tle_sets(lines: list[str], source: str, problems: list[str]):
     return sets
 
 
-def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True) -> Catalog:
+def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True,
+             on_invalid: str = "raise") -> Catalog:  # fmt: skip
     """Read a file of two-line or three-line element sets (TLE / 3LE).
 
     Each element set is a line 1 and a line 2 (69 characters each), optionally after a
@@ -221,6 +234,11 @@ def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True) -> C
         Mission start date (UTC when naive); default the latest epoch.
     checksum : bool
         Check the checksum digit of every line (default True).
+    on_invalid : {"raise", "set aside"}
+        Element sets that are well formed but not orbits of this model (sgp4 rejects
+        them, perigee below 150 km, ``a`` above 100,000 km, an epoch more than 10 years
+        from the start): problems (default), or set aside in ``Catalog.invalid`` with
+        their line and reason (the command line: the candidate filters decide).
 
     Raises
     ------
@@ -237,7 +255,7 @@ def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True) -> C
         _fail(source, f"{empty}no TLE element sets (pairs of lines starting with '1 ' and '2 ', "
                       "optionally after a name line)")  # fmt: skip
     problems: list[str] = []
-    rows, where = [], []
+    rows, where, flagged = [], [], {}
     for title, (n1, line1), (n2, line2) in _tle_sets(lines, source, problems):
         one = _tle_line(n1, line1, "1", source, checksum, problems)
         two = _tle_line(n2, line2, "2", source, checksum, problems)
@@ -251,11 +269,10 @@ def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True) -> C
             continue
         satrec = Satrec.twoline2rv(line1, line2)
         problem = _sgp4_problem(satrec)
-        a_km = None if problem else brouwer_a_km(satrec)
+        a_km = kozai_a_km(two["mean_motion"]) if problem else brouwer_a_km(satrec)
         problem = problem or _a_problem(a_km, two["mean_motion"])
         if problem:
-            problems.append(f"{source}, line {n1} (catalog number {one['norad']}): {problem}")
-            continue
+            flagged[len(rows)] = f": {problem}"
         name = None
         if title is not None:
             name = title[1][2:] if title[1].startswith("0 ") else title[1]
@@ -264,7 +281,8 @@ def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True) -> C
                                  two, intl))  # fmt: skip
         where.append(f"line {n1}")
     _duplicates(rows, where, source, problems)
-    return _catalog(rows, source, start, problems, "TLE element sets")
+    return _catalog(rows, source, start, problems, "TLE element sets", where=where,
+                    flagged=flagged, on_invalid=on_invalid)  # fmt: skip
 
 
 def _tle_pair(line1: str, line2: str) -> bool:
