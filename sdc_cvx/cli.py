@@ -800,13 +800,13 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     campaign = scenario.campaign
     gap = scenario.solver.gap if gap is None else gap
     time_limit_s = scenario.solver.time_limit_s if time_limit_s is None else time_limit_s
-    catalog = read_catalog(scenario)
+    catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
 
     def info(message: str) -> None:
         if not quiet:
             click.echo(message, err=True)
 
-    catalog, _ = select_candidates(catalog, scenario.selection, info)
+    catalog, _ = select_candidates(catalog, scenario, info)
     try:
         campaign.check_candidates(catalog.ids)
     except MissionError as err:

@@ -133,10 +133,11 @@ class Pricing:
 
 
 def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
-          tol_mps: float = 0.01, gap_rel: float = 0.0, stop_above_mps: float = np.inf,
+          tol_mps: float = 0.01, gap_rel: float = 0.0, path_tol_rel: float = 0.0,
+          stop_above_mps: float = np.inf,
           ceiling_mps: float = -np.inf,
-          time_limit_s: float | None = None, exclude=(), must_visit=(),
-          seeds=()) -> Pricing:  # fmt: skip
+          time_limit_s: float | None = None, exclude=(), must_visit=(), seeds=(),
+          known=None) -> Pricing:  # fmt: skip
     """The cheapest missions of ``launch`` with ``prices`` added to the debris' costs.
 
     Parameters
@@ -149,6 +150,9 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     tol_mps, gap_rel : float
         Gap the search closes: ``max(tol_mps, gap_rel * plan)`` [m/s, -] (prices can make
         the plan's value any number: the relative gap is for pricing without prices).
+    path_tol_rel : float
+        Relative tolerance of each path's schedule (its transfers) [-]; 0.01 m/s at
+        least.
     stop_above_mps : float
         Stop once no mission can cost less than this under the prices [m/s] (the
         launch's dual: no column of negative reduced cost is left).
@@ -159,6 +163,9 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
         Catalog rows this pricing must leave out / must remove (the greedy campaign).
     seeds : sequence of tuple of int
         Paths (node positions) tried first as incumbents.
+    known : dict, optional
+        Schedules of this launch's paths certified before (``{nodes: PathSchedule}``):
+        not solved again (see ``certify``).
 
     Returns
     -------
@@ -181,7 +188,8 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     result = certify(orbits, search_nodes, a_low, a_high, solver=solver, gap_rel=gap_rel,
                      gap_abs_mps=tol_mps, time_limit_s=time_limit_s, seeds=seeds,
                      stop_above_mps=stop_above_mps, ceiling_mps=ceiling_mps,
-                     names=nodes.catalog.ids)  # fmt: skip
+                     names=nodes.catalog.ids, known=known,
+                     path_tol_rel=max(path_tol_rel, gap_rel / 2))  # fmt: skip
     debris_rows = len(launch.catalog)
     columns = tuple(
         Column(launch.index, c.path, tuple(sorted(k for k in c.path if k < debris_rows)),

@@ -140,9 +140,15 @@ class _Campaign:
                  f"{gap:.2f} m/s, {len(self.pool)} columns, {self.pricings} pricings")  # fmt: skip
 
     def price_all(self, tasks) -> list[Pricing]:
-        """Run the pricing ``tasks`` (launch, keyword arguments) where they run."""
+        """Run the pricing ``tasks`` (launch, keyword arguments) where they run, each with
+        the schedules the pool knows of its launch's paths."""
         left = self.remaining()
-        out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left))
+        known: dict[int, dict] = {}
+        for column in self.pool.columns:
+            known.setdefault(column.launch, {})[column.nodes] = column.schedule
+        out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left,
+                                      known=known.get(launch.index),
+                                      path_tol_rel=self.gap_rel / 2))
                         for launch, kwargs in tasks])  # fmt: skip
         self.pricings += len(out)
         return out

@@ -262,7 +262,7 @@ class _Search:
 
     def __init__(self, orbits, nodes: CertifiedNodes, a_low, a_high, *, deadline, say,
                  initial_cells, names=None, path_tol_rel=0.0, gap_abs_mps=PATH_TOL_MPS,
-                 ceiling_mps=-np.inf):  # fmt: skip
+                 ceiling_mps=-np.inf, known=None):  # fmt: skip
         n = len(nodes.ops_days)
         self.names = [str(k) for k in range(n)] if names is None else [str(v) for v in names]
         self.path_tol_rel, self.gap_abs = path_tol_rel, gap_abs_mps
@@ -294,6 +294,7 @@ class _Search:
         self.upper, self.path, self.schedule = np.inf, (), None
         self.settled: dict[tuple, float] = {}  # path -> its certified lower bound [m/s]
         self.schedules: dict[tuple, PathSchedule] = {}  # path -> its best schedule
+        self.known = dict(known or {})  # path -> a schedule certified before (a campaign's)
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
         self.completion = None  # per node, cheapest walk of k legs from it (network())
         self.notes: list[str] = []
@@ -329,9 +330,11 @@ class _Search:
             tuple(float(nodes.ops_days[k]) for k in path), nodes.tmax_days, nodes.tmin_days,
             nodes.rule, nodes.j2)  # fmt: skip
         remaining = max(self.deadline - time.perf_counter(), 0.1)
-        schedule = solve_path(problem, tol_mps=PATH_TOL_MPS, tol_rel=self.path_tol_rel,
-                              time_limit_s=remaining,
-                              cutoff_mps=self.level - self.node_cost(path))  # fmt: skip
+        cutoff = self.level - self.node_cost(path)
+        schedule = self.known.get(path)
+        if schedule is None or not _settles(schedule, cutoff, self.path_tol_rel):
+            schedule = solve_path(problem, tol_mps=PATH_TOL_MPS, tol_rel=self.path_tol_rel,
+                                  time_limit_s=remaining, cutoff_mps=cutoff)  # fmt: skip
         self.settled[path] = schedule.lower_mps + self.node_cost(path)
         self.schedules[path] = schedule
         total = schedule.upper_mps + self.node_cost(path)
@@ -389,8 +392,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             on_iteration: Callable[[dict], None] | None = None, names=None,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
             split_pieces: int = 2, gap_abs_mps: float = PATH_TOL_MPS,
-            stop_above_mps: float = np.inf,
-            ceiling_mps: float = -np.inf) -> CertifiedResult:  # fmt: skip
+            stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
+            known=None, path_tol_rel: float | None = None) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
     Parameters
@@ -428,6 +431,14 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         Enumerate: certify every path whose lower bound is under this [m/s] (they are
         in ``paths``), and stop when the relaxation proves that no other path is; the
         plan and bound are then those of the cheapest, as usual.
+    known : dict, optional
+        Schedules certified before, by path (node positions): a path is not solved again
+        when its schedule is within the tolerance of its bound, or its bound is above
+        what could matter (a campaign prices the same launch many times; a path's
+        schedule does not depend on the node costs).
+    path_tol_rel : float, optional
+        Relative tolerance of each path's schedule (default ``gap_rel / 2``: a path
+        needs no finer certificate than the mission's).
 
     Notes
     -----
@@ -449,8 +460,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
                      say=progress or (lambda line: None), initial_cells=initial_cells,
-                     names=names, path_tol_rel=gap_rel / 2, gap_abs_mps=gap_abs_mps,
-                     ceiling_mps=ceiling_mps)  # fmt: skip
+                     names=names, gap_abs_mps=gap_abs_mps,
+                     path_tol_rel=gap_rel / 2 if path_tol_rel is None else path_tol_rel,
+                     ceiling_mps=ceiling_mps, known=known)  # fmt: skip
     enumerating = np.isfinite(ceiling_mps)
     for seed in seeds:
         if len(seed) == nodes.legs + 1:
@@ -550,6 +562,14 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                            tuple(search.notes), edges=int(len(search.edge_from)),
                            paths_certified=len(search.settled),
                            paths=search.certified_paths(), complete=not search.limited)  # fmt: skip
+
+
+def _settles(schedule: PathSchedule, cutoff: float, tol_rel: float) -> bool:
+    """A schedule certified before serves again: within the tolerance of its own bound,
+    or with a bound above the cutoff (the path cannot matter)."""
+    tol = max(PATH_TOL_MPS, tol_rel * schedule.upper_mps) if schedule.feasible else PATH_TOL_MPS
+    return schedule.upper_mps - schedule.lower_mps <= tol * (1 + 1e-9) or \
+        schedule.lower_mps > cutoff  # fmt: skip
 
 
 def _allowed(upper, gap_rel, gap_abs=PATH_TOL_MPS) -> float:

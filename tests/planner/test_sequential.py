@@ -210,10 +210,14 @@ def test_the_paper_method_flies_its_path_on_the_paths_best_schedule():
 
 def test_steps_that_change_nothing_end_the_run_as_stalled():
     """A catalog where the paper's driver used to repeat one solution to its 40-iteration
-    limit (issue 13): the run ends after ``max_repeats`` repeats and says why."""
+    limit (issue 13): the run ends after ``max_repeats`` repeats and says why.
+
+    Which catalogs repeat depends on the backend's choices among equal MILP optima:
+    with highspy 1.15 spread4-n3-120d did, with 1.16 spread5-n3-250d does (under both
+    inclination rules) and spread4-n3-120d converges."""
     from .test_enumeration import CASES
 
-    case = next(case for case in CASES if case.name == "spread4-n3-120d")
+    case = next(case for case in CASES if case.name == "spread5-n3-250d")
     sol = solve(case.catalog(), case.mission())
     settings = SequentialSettings()
     assert sol.status == "stalled"
