@@ -394,6 +394,8 @@ class RunProgress:
     help="Write the solution JSON to stdout (and nothing else there).",
 )
 @click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
+@click.option("--verbose", is_flag=True, default=None,
+              help="Show the MILP backend's own log (on stderr).")  # fmt: skip
 @click.option(
     "--progress/--no-progress",
     default=None,
@@ -403,7 +405,7 @@ class RunProgress:
 def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclination_deg,
         max_eccentricity, ids, exclude_ids, n, tmax_days, deorbit_days, preopt_days, dv_max_mps,
         min_transfer_days, backend, method, gap, time_limit_s, mip_gap, threads, fallback,
-        out_dir, quiet, json_out, svg, progress):  # fmt: skip
+        out_dir, quiet, json_out, svg, verbose, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
     SCENARIO.toml (optional; default the paper's case) gives the catalog, mission,
@@ -425,7 +427,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         catalog_start=start, n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
         preopt_days=preopt_days, dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days,
         backend=backend, method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
-        threads=threads,
+        threads=threads, verbose=verbose or None,
         fallback=tuple(fallback) or None,
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids),
     )  # fmt: skip

@@ -2,6 +2,9 @@
 
 import importlib.metadata
 import json
+import os
+import subprocess
+import sys
 import time
 from datetime import UTC, datetime
 from pathlib import Path
@@ -15,7 +18,7 @@ from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.cli import main
 from sdc_cvx.inputs.formats import read_gtoc9
 from sdc_cvx.study.scenario import Selection, load
-from tests.conftest import EXAMPLES, PAPER_CSV, SHARED_DATA
+from tests.conftest import EXAMPLES, PAPER_CSV, REPO, SHARED_DATA
 
 GTOC9 = SHARED_DATA / "gtoc9" / "debris_data.txt"
 
@@ -426,3 +429,19 @@ def test_run_progress_and_run_log_say_which_steps_were_rejected(tmp_path):
     assert log.count("step rejected:") == len(rejected)
     assert "Choosing 5 of 11 debris from paper Table 5" in log and "total dV  2985.8" in log
     assert "status    converged: path from the seeding" in result.stdout
+
+
+def cli_process(*args: str, cwd=None, timeout: float = 300) -> subprocess.CompletedProcess:
+    """``python -m sdc_cvx ARGS`` in a real process, on this checkout (PYTHONPATH)."""
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    return subprocess.run([sys.executable, "-m", "sdc_cvx", *args], cwd=cwd or REPO, env=env,
+                          capture_output=True, text=True, timeout=timeout)  # fmt: skip
+
+
+@pytest.mark.slow
+def test_run_json_prints_json_only_through_a_real_process(tmp_path):
+    result = cli_process("run", "--n", "3", "--json", "--out", str(tmp_path / "out"))
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)  # no backend banner or progress line around it
+    assert data["path"] and data["total_dv_mps"] > 0
+    assert data == json.loads((tmp_path / "out" / "solution.json").read_text())
