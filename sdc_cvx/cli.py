@@ -444,7 +444,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
 
     catalog, _ = select_candidates(catalog, scenario.selection, info)
     try:
-        mission.check_candidates(catalog.ids)
+        mission.check_candidates(catalog)
     except MissionError as err:
         where = f"{scenario.source}: " if scenario.source is not None else ""
         problems = "; ".join(f"mission.{problem}" for problem in str(err).split("; "))

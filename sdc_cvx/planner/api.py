@@ -77,7 +77,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
                                 progress=progress)  # fmt: skip
     catalog = Catalog.paper_case() if catalog is None else catalog
     mission = Mission() if mission is None else mission
-    mission.check_candidates(catalog.ids)
+    mission.check_candidates(catalog)
     wall = time.perf_counter()
     nodes = MissionNodes.of(catalog, mission)
     catalog = nodes.catalog

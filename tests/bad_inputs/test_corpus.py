@@ -163,6 +163,28 @@ CASES: dict[str, Case] = {
     "toml-drift-band-reversed": scenario_case(
         "n = 3\ndrift_altitude_km = [1200.0, 400.0]", "drift_altitude_km"
     ),
+    # ---- deorbit by the vehicle: a perigee "lowered" upwards would be a negative ΔV
+    "toml-deorbit-perigee-5000": scenario_case(
+        'n = 2\ndeorbit_by = "vehicle"\ndeorbit_perigee_km = 5000.0',
+        "mission.deorbit_perigee_km = 5000 is not below the perigee",
+        "3 candidate debris",
+    ),
+    "toml-deorbit-perigee-above-one": scenario_case(
+        'n = 2\ndeorbit_by = "vehicle"\ndeorbit_perigee_km = 650.0',
+        "deorbit_perigee_km = 650 is not below",
+        "1 candidate debris (1 at 614.9 km)",
+    ),
+    "toml-injection-below-surface": scenario_case(
+        "n = 2\ninjection = [6000.0, 0.0, 98.0, 0.0]", "mission.injection: injection a_km"
+    ),
+    "toml-injection-perigee-below-surface": scenario_case(
+        "n = 2\ninjection = [7000.0, 0.1, 98.0, 0.0]",
+        "mission.injection: injection perigee altitude",
+        "below the Earth's surface",
+    ),
+    "toml-injection-raan-1e308": scenario_case(
+        "n = 2\ninjection = [7000.0, 0.001, 98.0, 1e308]", "injection raan_deg must be in"
+    ),
     "toml-catalog-missing": Case(
         {"scenario.toml": '[catalog]\npath = "nowhere.csv"\n'},
         ["run", "{in}/scenario.toml"],
