@@ -7,6 +7,8 @@ mission, 4 solver failure.
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import importlib.metadata
 import importlib.util
 import sys
@@ -46,6 +48,8 @@ EXIT_CODES: dict[type[SdcError], int] = {
     SolverFailure: SOLVER_FAILED,
 }
 """Exit code of each family of :mod:`sdc_cvx.errors` (0 is success)."""
+SYSTEM_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EROFS}
+"""Write failures of the machine, not of the input (a full disk): exit 4, not 2."""
 MAX_DROPPED_SHOWN = 20
 
 
@@ -259,14 +263,15 @@ class RunProgress:
     file as it is said, so that a killed run leaves its progress behind.
     """
 
-    def __init__(self, show: bool, heartbeat_s: float = 5.0, live_log: Path | None = None):
+    def __init__(self, show: bool, heartbeat_s: float = 5.0, live_log: Path | None = None,
+                 stream=None):  # fmt: skip
         import threading
         import time
 
         self.show, self.heartbeat_s, self._time = show, heartbeat_s, time.monotonic
         self.live_log = live_log
-        self._file = None
-        if live_log is not None:
+        self._file = stream
+        if live_log is not None and stream is None:
             live_log.parent.mkdir(parents=True, exist_ok=True)
             self._file = open(live_log, "w", encoding="utf-8", buffering=1)  # noqa: SIM115
         self.lines: list[str] = []
@@ -283,16 +288,19 @@ class RunProgress:
         return self
 
     def __exit__(self, *exc):
+        """Stop the heartbeat; the live log stays open (and locked) until discarded."""
         self._stop.set()
         if self._thread.is_alive():
             self._thread.join()
-        if self._file is not None:
-            self._file.close()
 
     def discard_live_log(self) -> None:
-        """The run folder now holds ``run.log``: remove the live copy beside it."""
+        """The run folder now holds ``run.log`` (or nothing is kept): remove the live copy
+        beside it, then release it (removed while locked: no other run's log is hit)."""
         if self.live_log is not None:
             self.live_log.unlink(missing_ok=True)
+        if self._file is not None:
+            with self._lock:
+                self._file.close()
 
     def say(self, line: str, *, show: bool = True) -> None:
         from datetime import UTC, datetime
@@ -415,7 +423,13 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     """
     from .network.edges import preoptimize
     from .planner.api import solve
-    from .report.run_folder import new_run_folder, out_folder_problem, write_run
+    from .report.run_folder import (
+        live_log_path,
+        new_run_folder,
+        open_live_log,
+        out_folder_problem,
+        write_run,
+    )
     from .solution import RunStatus
 
     # a plan, but the run did not settle: say so (a new solved status needs no warning)
@@ -455,9 +469,18 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     header = run_header(catalog, mission, solver)
     info(header)
     # the progress goes to OUT.log beside the run folder while the run lasts (a killed run
-    # leaves it there), then into the folder as run.log
-    live_log = Path(out_dir).with_name(Path(out_dir).name + ".log") if out_dir else None
-    with RunProgress(show_progress, live_log=live_log) as steps:
+    # leaves it there, the next run into OUT replaces it), then into the folder as run.log;
+    # it also locks OUT against a second run at once
+    live_log = stream = None
+    if out_dir is not None:
+        live_log = live_log_path(out_dir)
+        try:
+            stream = open_live_log(out_dir)
+        except FileExistsError as err:  # another run is writing OUT; a file of the user's
+            fail(f"--out: {err}")
+        except OSError as err:
+            fail(f"--out: cannot write the run's log {live_log}: {err.strerror or err}")
+    with RunProgress(show_progress, live_log=live_log, stream=stream) as steps:
         steps.say(header, show=False)
         steps.set_phase(
             "certified search: leg costs of every pair, cheap paths, then the first relaxation"
@@ -485,7 +508,15 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
                   log=steps.log_text())  # fmt: skip
         steps.discard_live_log()
     except OSError as err:
-        fail(f"cannot write the run folder {folder or '.'}: {err.strerror or err}")
+        steps.discard_live_log()  # nothing is kept beside the folder
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_run_* folder, if still empty
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        message = err.strerror or str(err)
+        if not message.startswith("cannot write"):
+            message = f"cannot write the run folder {folder or '.'}: {message}"
+        fail(message, code)
     start = None  # the mission start date the RAANs refer to (Catalog.start)
     if catalog.start is not None:
         start = f"start     {catalog.start.isoformat()} (the catalog's RAANs are at this date)"

@@ -25,3 +25,17 @@ def test_a_status_is_its_string(status, text):
 
 def test_every_run_status_so_far_has_a_plan():
     assert all(status.is_solved for status in RunStatus)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("file.csv", None), r"catalog must be a Catalog, got str 'file.csv': read the file"),
+        ((None, {"n": 3}), r"mission must be a Mission, got dict .*Mission\(\*\*\{'n': 3\}\)"),
+    ],
+)
+def test_solve_names_an_argument_of_the_wrong_kind(args, message):
+    from sdc_cvx import solve
+
+    with pytest.raises(TypeError, match=message):
+        solve(*args)

@@ -71,6 +71,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     SolverFailure
         The backend failed, or a limit stopped the search before any plan.
     """
+    _check_types(catalog, mission, solver)
     solver = SolverOptions() if solver is None else solver
     if solver.method == "paper":
         return sequential.solve(catalog, mission, solver=solver, settings=settings,
@@ -103,6 +104,25 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
             f"no plan costs less than {result.lower_mps:.2f} m/s: allow more time"
         )
     return _solution(result, nodes, mission, solver, orbits, records, wall)
+
+
+def _check_types(catalog, mission, solver) -> None:
+    """A clear :class:`TypeError` for an argument of the wrong kind (a path, a dict)."""
+    import os
+
+    if catalog is not None and not isinstance(catalog, Catalog):
+        hint = ""
+        if isinstance(catalog, str | os.PathLike):
+            path = os.fspath(catalog)
+            hint = (f": read the file first, e.g. solve(sdc_cvx.Catalog.from_csv({path!r}), "
+                    "mission), or inputs.formats.read_catalog for TLE, OMM, GTOC9")  # fmt: skip
+        raise TypeError(f"solve: catalog must be a Catalog, got {type(catalog).__name__} "
+                        f"{catalog!r:.80}{hint}")  # fmt: skip
+    for name, value, kind in (("mission", mission, Mission), ("solver", solver, SolverOptions)):
+        if value is not None and not isinstance(value, kind):
+            hint = f": e.g. {kind.__name__}(**{value!r:.60})" if isinstance(value, dict) else ""
+            raise TypeError(f"solve: {name} must be a {kind.__name__}, got "
+                            f"{type(value).__name__} {value!r:.80}{hint}")  # fmt: skip
 
 
 def _infeasible_message(mission: Mission) -> str:

@@ -11,19 +11,33 @@ next to it) and swaps it in at once, so ``--out`` never shows a mix of two runs:
 for an existing ``--out`` (:func:`out_folder_problem`): a new or empty folder is used;
 an earlier run folder (one holding ``solution.json``, ``run.log`` or ``legs.csv``) is
 replaced whole, stale files (an old ``.svg``) included; any other non-empty folder is
-refused, so a mistyped ``--out ~`` cannot replace a home folder.
+refused, so a mistyped ``--out ~`` cannot replace a home folder.  The folder one is in
+(``--out .``) or one of its parents is refused too: swapping it would leave the shell in
+a deleted folder.  A symlinked folder is followed (:func:`real_folder`): the run folder
+is written where the link points and the link stays.
+
+While ``run`` lasts, its progress goes to a live log ``NAME.log`` beside the folder
+(:func:`open_live_log`), which also locks the folder: a second run into the same folder
+at once is refused.  The live log starts with :data:`LIVE_LOG_SIGNATURE`, so that a file
+``NAME.log`` of the user's is never overwritten (the run is refused) while a log a
+killed run left is replaced by the next run.  :func:`write_run` holds a lock on the
+parent folder while it writes and swaps, so two saves into one folder at once follow
+each other (the last one wins) instead of mixing.
 """
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
+import errno
+import fcntl
 import os
 import shutil
 import tempfile
 from collections.abc import Callable
 from datetime import datetime
 from pathlib import Path
-from typing import BinaryIO
+from typing import BinaryIO, TextIO
 
 import pandas as pd
 
@@ -33,6 +47,8 @@ from ..solution import Solution
 
 RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
 """A folder holding one of these is an earlier run folder, which ``write_run`` replaces."""
+LIVE_LOG_SIGNATURE = "# sdc_cvx live run log: it moves into the run folder as run.log at the end"
+"""First line of a live log: a ``NAME.log`` without it is the user's and never touched."""
 CSV_FLOAT_FORMAT = "%.10g"
 """Floats in the CSV files: 10 significant digits (no ``98.30000000000001``)."""
 
@@ -84,13 +100,29 @@ def new_run_folder(parent: Path | str = ".", prefix: str = "sdc_run_") -> Path:
     raise FileExistsError(f"cannot create a new run folder under {parent}")
 
 
+def real_folder(folder: Path | str) -> Path:
+    """``folder``, or where it points when it is a symbolic link (followed, not replaced)."""
+    folder = Path(folder)
+    return Path(os.path.realpath(folder)) if folder.is_symlink() else folder
+
+
 def out_folder_problem(folder: Path | str) -> str | None:
     """Why ``folder`` cannot take a run folder, or None (checked before any solve).
 
     Refused: a path inside a file, a file, a non-empty folder that is not an earlier
-    run folder (see the module docstring), and a place the user cannot write to.
+    run folder (see the module docstring), the current folder or one of its parents,
+    and a place the user cannot write to.
     """
-    folder = Path(folder)
+    given = Path(folder)
+    folder = real_folder(given)
+    resolved = Path(os.path.realpath(folder))
+    here = Path.cwd().resolve()
+    if resolved == here or resolved in here.parents:
+        which = "the current folder" if resolved == here else "a parent of the current folder"
+        return (
+            f"{given} is {which}: a run folder is swapped in whole, which would remove the "
+            f"folder you are in; choose a new folder, e.g. --out {given / 'run'}"
+        )
     if folder.exists() and not folder.is_dir():
         return f"{folder} is a file, not a folder"
     ancestor = folder if folder.exists() else folder.parent
@@ -111,6 +143,89 @@ def out_folder_problem(folder: Path | str) -> str | None:
     if not os.access(parent, os.W_OK | os.X_OK):
         return f"cannot create {folder}: {parent} is not writable"
     return None
+
+
+def live_log_path(folder: Path | str) -> Path:
+    """The live log of a run into ``folder``: ``NAME.log`` beside it."""
+    folder = real_folder(folder)
+    return folder.with_name(folder.name + ".log")
+
+
+class FolderBusy(FileExistsError):
+    """Another run is writing the same folder now."""
+
+
+def open_live_log(folder: Path | str) -> TextIO:
+    """Create (or take over) the live log of a run into ``folder``, locked, and return it.
+
+    The file is ``NAME.log`` beside the folder, opened for writing with an exclusive
+    ``flock`` held until it is closed, and starts with :data:`LIVE_LOG_SIGNATURE`.  A live
+    log left by a killed run (signed, unlocked) is taken over.
+
+    Raises
+    ------
+    FolderBusy
+        Another process holds the lock: a run into the same folder is under way.
+    FileExistsError
+        ``NAME.log`` exists and is not a live log of sdc_cvx (a file of the user's).
+    OSError
+        It cannot be created (with the reason).
+    """
+    path = live_log_path(folder)
+    for _ in range(5):  # the file may change under us (a run ending, another starting)
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL, file_mode())
+            created = True
+        except FileExistsError:
+            fd = os.open(path, os.O_RDWR)
+            created = False
+        try:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                raise FolderBusy(
+                    f"another sdc_cvx run is writing {folder} now (its progress: {path}); "
+                    "wait for it to end or choose another folder"
+                ) from None
+            try:
+                same = os.path.samestat(os.fstat(fd), os.stat(path))
+            except FileNotFoundError:
+                same = False
+            if not same:  # removed or replaced between the open and the lock: again
+                os.close(fd)
+                continue
+            if not created:
+                with os.fdopen(os.dup(fd), "r", encoding="utf-8", errors="replace") as text:
+                    first = text.readline().rstrip("\n")
+                if first != LIVE_LOG_SIGNATURE:
+                    raise FileExistsError(
+                        f"{path} exists and is not a log of sdc_cvx: a run into {folder} "
+                        f"keeps its progress there while it lasts, and never overwrites a file "
+                        f"of yours; move {path.name} or choose another folder"
+                    )
+                os.ftruncate(fd, 0)
+                os.lseek(fd, 0, os.SEEK_SET)
+            stream = os.fdopen(fd, "w", encoding="utf-8", buffering=1)
+        except BaseException:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+            if created:
+                path.unlink(missing_ok=True)
+            raise
+        stream.write(LIVE_LOG_SIGNATURE + "\n")
+        return stream
+    raise FolderBusy(f"{path} keeps changing: another run into {folder} is starting or ending")
+
+
+@contextlib.contextmanager
+def _parent_lock(folder: Path):
+    """An exclusive ``flock`` on ``folder``'s parent while a run folder is written there."""
+    fd = os.open(folder.parent, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
 
 
 def legs_table(solution: Solution) -> pd.DataFrame:
@@ -201,22 +316,43 @@ def write_run(
     FileExistsError
         ``folder`` is refused (:func:`out_folder_problem`).
     OSError
-        The folder cannot be written.
+        The folder cannot be written: the message names the folder and the reason, the
+        ``errno`` is the system's (``ENOSPC`` for a full disk).  Nothing is left behind:
+        no folder it created, no hidden ``.partial`` folder.
     """
-    folder = Path(folder)
-    problem = out_folder_problem(folder)
+    given = Path(folder)
+    folder = real_folder(given)
+    problem = out_folder_problem(given)
     if problem is not None:
         raise FileExistsError(problem)
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    _remove_stale_stages(folder)
-    stage = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial"))
+    created = [p for p in (folder.parent, *folder.parent.parents) if not p.exists()]
+    stage = None
     try:
-        os.chmod(stage, file_mode(0o777))
-        names = _write_files(stage, solution, edges, scenario_toml, catalog, formats, log)
-        _pause_before_swap()
-        _swap_in(stage, folder)
-    except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
+        folder.parent.mkdir(parents=True, exist_ok=True)
+        with _parent_lock(folder):
+            problem = out_folder_problem(given)  # again, now that no other save can run
+            if problem is not None:
+                raise FileExistsError(problem)
+            _remove_stale_stages(folder)
+            stage = Path(
+                tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial")
+            )
+            os.chmod(stage, file_mode(0o777))
+            names = _write_files(stage, solution, edges, scenario_toml, catalog, formats, log)
+            _pause_before_swap()
+            _swap_in(stage, folder)
+            stage = None
+    except BaseException as err:
+        if stage is not None:
+            shutil.rmtree(stage, ignore_errors=True)
+        for parent in created:  # the parents it made, innermost first, if still empty
+            with contextlib.suppress(OSError):
+                parent.rmdir()
+        if isinstance(err, OSError) and not isinstance(err, FileExistsError):
+            reason = err.strerror or str(err)
+            where = f" ({err.filename})" if err.filename else ""
+            message = f"cannot write the run folder {given}: {reason}{where}"
+            raise OSError(err.errno or errno.EIO, message) from err
         raise
     return [folder / name for name in names]
 

@@ -157,6 +157,8 @@ def run_study(
         raise ValueError(f"workers must be a positive integer, got {workers!r}")
     if isinstance(scheduler, str | os.PathLike) and importlib.util.find_spec("distributed") is None:
         raise SweepError("a Dask scheduler needs dask.distributed: pip install 'sdc_cvx[dask]'")
+    if executor is None and scheduler is None:
+        _check_main_guard()
     out = Path(out_dir)
     planned = [_plan(item) for item in study.scenarios]
     out.mkdir(parents=True, exist_ok=True)
@@ -208,6 +210,55 @@ def sweep(
         study = load_study(study_or_path)
     folder = Path(out_dir) if out_dir is not None else new_run_folder(prefix="sdc_sweep_")
     return run_study(study, folder, **kwargs)
+
+
+def _check_main_guard() -> None:
+    """Refuse a sweep started at the top level of a script without a main guard.
+
+    The local pool's worker processes import the script that started the sweep (as
+    ``__mp_main__``): a call outside ``if __name__ == "__main__":`` would start the sweep
+    again in each of them, and they die with a traceback each.  Found by reading the
+    script: the calling line must lie inside such an ``if``.
+    """
+    import ast
+    import inspect
+
+    frame = inspect.currentframe()
+    while frame is not None:
+        module = frame.f_globals.get("__name__")
+        if frame.f_code.co_name == "<module>" and module in ("__main__", "__mp_main__"):
+            break
+        frame = frame.f_back
+    if frame is None:
+        return  # not called from a script's top level (a function, a notebook, the CLI)
+    path, line = frame.f_code.co_filename, frame.f_lineno
+    try:
+        tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    except (OSError, SyntaxError, ValueError):
+        return  # no script to read (python -c, an interactive session)
+
+    def guard(node) -> bool:
+        test = node.test
+        return (
+            isinstance(test, ast.Compare) and len(test.comparators) == 1
+            and {type(test.left), type(test.comparators[0])} == {ast.Name, ast.Constant}
+            and {getattr(test.left, "id", None), getattr(test.comparators[0], "id", None)}
+            >= {"__name__"}
+            and "__main__" in {getattr(test.left, "value", None),
+                               getattr(test.comparators[0], "value", None)}
+        )  # fmt: skip
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and guard(node):
+            end = max(getattr(n, "end_lineno", n.lineno) for n in node.body)
+            if node.body[0].lineno <= line <= end:
+                return
+    raise SweepError(
+        f"{path}, line {line}: the sweep is started at the top level of the script, "
+        "without `if __name__ == \"__main__\":`; its worker processes import the script "
+        "and would start the sweep again: put the call under that guard (or pass "
+        "executor= or scheduler=)"
+    )
 
 
 def _plan(item: StudyScenario) -> _Planned:

@@ -235,6 +235,24 @@ CASES: dict[str, Case] = {
         names="locked",
         skip="root writes anywhere" if os.geteuid() == 0 else None,
     ),
+    "out-current-folder": Case(
+        {"debris.csv": GOOD_CSV},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "."],
+        ["--out", "is the current folder"],
+        names="--out",
+    ),
+    "out-in-proc": Case(
+        {"debris.csv": GOOD_CSV},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "/proc/sdc_cvx_x"],
+        ["--out", "/proc/sdc_cvx_x.log"],
+        names="/proc/sdc_cvx_x",
+    ),
+    "out-beside-a-log-of-the-user": Case(
+        {"debris.csv": GOOD_CSV, "r.log": "my notes\n"},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "{in}/r"],
+        ["is not a log of sdc_cvx", "never overwrites"],
+        names="r.log",
+    ),
     # ---- command-line values
     "cli-n-1": Case({}, ["run", "--n", "1"], ["mission.n must be >= 2"], names="command line"),
     "cli-tmax-1e6": Case(

@@ -218,3 +218,101 @@ def test_a_run_without_a_relaxation_row_still_writes_its_folder(solution, tmp_pa
     table = pd.read_csv(tmp_path / "run" / "iterations.csv")
     assert table.empty and {"iteration", "path", "dv_true_mps"} <= set(table.columns)
     assert json.loads((tmp_path / "run" / "solution.json").read_text())["iterations"] == []
+
+
+# ---------------------------------------------------------------- issue 20: files and locks
+def test_the_current_folder_and_its_parents_are_refused(solution, tmp_path, monkeypatch):
+    here = tmp_path / "here"
+    here.mkdir()
+    monkeypatch.chdir(here)
+    assert "is the current folder" in out_folder_problem(".")
+    assert "is the current folder" in out_folder_problem(here)
+    assert "a parent of the current folder" in out_folder_problem("..")
+    with pytest.raises(FileExistsError, match="current folder"):
+        solution.save(".", formats=())
+    assert list(here.iterdir()) == [] and sorted(p.name for p in tmp_path.iterdir()) == ["here"]
+
+
+def test_a_symlinked_folder_is_followed_and_the_link_kept(solution, tmp_path):
+    target = tmp_path / "target"
+    target.mkdir()
+    link = tmp_path / "link"
+    link.symlink_to(target)
+    solution.save(link, formats=())
+    assert link.is_symlink() and (target / "solution.json").exists()
+    solution.save(link, formats=())  # an earlier run folder behind the link: replaced
+    assert link.is_symlink() and (target / "solution.json").exists()
+    assert not list(tmp_path.glob(".*partial"))
+
+
+def test_an_unwritable_place_raises_a_clear_oserror_and_leaves_nothing(solution, tmp_path):
+    with pytest.raises(OSError, match="cannot write the run folder /proc/sdc_cvx_nowhere/run"):
+        solution.save("/proc/sdc_cvx_nowhere/run", formats=())
+    assert not Path("/proc/sdc_cvx_nowhere").exists()
+
+
+def test_a_write_that_fails_midway_leaves_nothing_it_created(solution, tmp_path, monkeypatch):
+    import errno
+
+    from sdc_cvx.report import run_folder
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(run_folder, "_swap_in", full)
+    with pytest.raises(OSError, match="cannot write the run folder .*No space left") as caught:
+        write_run(tmp_path / "new" / "deeper" / "run", solution, formats=())
+    assert caught.value.errno == errno.ENOSPC
+    assert list(tmp_path.iterdir()) == []  # no stage, and not the parents it made
+
+
+def test_the_live_log_locks_the_folder_and_never_takes_a_file_of_the_user(tmp_path):
+    from sdc_cvx.report.run_folder import (
+        LIVE_LOG_SIGNATURE,
+        FolderBusy,
+        live_log_path,
+        open_live_log,
+    )
+
+    out = tmp_path / "r"
+    assert live_log_path(out) == tmp_path / "r.log"
+    first = open_live_log(out)
+    with pytest.raises(FolderBusy, match="another sdc_cvx run is writing"):
+        open_live_log(out)
+    first.write("step\n")
+    first.close()  # a killed run: its log stays, unlocked, and the next run takes it over
+    assert (tmp_path / "r.log").read_text() == f"{LIVE_LOG_SIGNATURE}\nstep\n"
+    again = open_live_log(out)
+    again.close()
+    assert (tmp_path / "r.log").read_text() == f"{LIVE_LOG_SIGNATURE}\n"
+    for mine in ("my notes\n", ""):
+        (tmp_path / "r.log").write_text(mine)
+        with pytest.raises(FileExistsError, match="is not a log of sdc_cvx"):
+            open_live_log(out)
+        assert (tmp_path / "r.log").read_text() == mine
+
+
+def test_two_saves_into_one_folder_at_once_follow_each_other(solution, tmp_path):
+    import threading
+
+    out = tmp_path / "run"
+    errors = []
+
+    def save():
+        try:
+            solution.save(out, formats=())
+        except Exception as err:  # noqa: BLE001 - collected, asserted below
+            errors.append(err)
+
+    threads = [threading.Thread(target=save) for _ in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert errors == []
+    assert whole_without_figures(out) and not list(tmp_path.glob(".*partial"))
+
+
+def whole_without_figures(folder: Path) -> bool:
+    names = {p.name for p in folder.iterdir()}
+    return names == {"solution.json", "legs.csv", "iterations.csv", "edges.csv"}

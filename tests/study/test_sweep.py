@@ -26,7 +26,7 @@ from sdc_cvx.study.runner import (
     sweep,
 )
 from sdc_cvx.study.scenario import Scenario, ScenarioError
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, REPO
 
 pytestmark = pytest.mark.slow  # solves many missions (see tests/conftest.py)
 
@@ -295,3 +295,25 @@ def test_plot_sweep_draws_dv_against_the_swept_parameter(reference):
     assert ax.get_xlabel() == "mission.n"
     with pytest.raises(KeyError, match="no column 'gap'"):
         plot_sweep(reference, "gap")
+
+
+@pytest.mark.slow
+def test_a_script_without_a_main_guard_is_told_before_any_worker_starts(tmp_path):
+    """Its workers would import the script and start the sweep again (issue 20, item 4)."""
+    (tmp_path / "study.toml").write_text('[grid]\n"mission.n" = [2, 3]\n')
+    unguarded = "import sdc_cvx\nsdc_cvx.sweep('study.toml', 'out', progress=False)\n"
+    guarded = (
+        "from sdc_cvx.study.runner import _check_main_guard\n"
+        "if __name__ == '__main__':\n    _check_main_guard()\n    print('accepted')\n"
+    )
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    for name, text in (("unguarded.py", unguarded), ("guarded.py", guarded)):
+        (tmp_path / name).write_text(text)
+    result = subprocess.run([sys.executable, "unguarded.py"], cwd=tmp_path, env=env,
+                            capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert result.returncode == 1
+    assert "unguarded.py, line 2: the sweep is started at the top level" in result.stderr
+    assert "if __name__ ==" in result.stderr and not (tmp_path / "out").exists()
+    result = subprocess.run([sys.executable, "guarded.py"], cwd=tmp_path, env=env,
+                            capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert result.returncode == 0 and result.stdout == "accepted\n", result.stderr
