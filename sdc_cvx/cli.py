@@ -12,6 +12,7 @@ import errno
 import importlib.metadata
 import importlib.util
 import sys
+import warnings
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -20,6 +21,7 @@ import click
 
 from .errors import (
     CatalogError,
+    IgnoredOptionWarning,
     InputError,
     MissionError,
     MissionInfeasible,
@@ -487,10 +489,16 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
             if solver.method == "certified"
             else "seeding: re-optimising cheap paths, then building the first MILP"
         )
+        from .planner.api import ignored_options
+
+        for message in ignored_options(mission, solver):  # said once, up front
+            click.echo(f"warning: {message}", err=True)
+            steps.say(f"warning: {message}", show=False)
         try:
-            solution = solve(
-                catalog, mission, solver=solver, progress=steps.iteration, log=steps.search_step
-            )
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", IgnoredOptionWarning)
+                solution = solve(catalog, mission, solver=solver, progress=steps.iteration,
+                                 log=steps.search_step)  # fmt: skip
         except MissionInfeasible as err:
             steps.discard_live_log()  # a proven answer: the message says it all
             fail(f"infeasible mission: {err}", exit_code(err))

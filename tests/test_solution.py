@@ -39,3 +39,26 @@ def test_solve_names_an_argument_of_the_wrong_kind(args, message):
 
     with pytest.raises(TypeError, match=message):
         solve(*args)
+
+
+def test_an_option_the_method_does_not_use_is_said():
+    from sdc_cvx import Mission, SolverOptions
+    from sdc_cvx.planner.api import ignored_options
+
+    assert ignored_options(Mission(), SolverOptions()) == []
+    assert ignored_options(Mission(), SolverOptions(method="paper")) == []
+    (certified,) = ignored_options(Mission(dv_max_mps=500.0), SolverOptions())
+    assert certified.startswith("mission.dv_max_mps = 500 is ignored")
+    (paper,) = ignored_options(Mission(), SolverOptions(method="paper", gap=0.5))
+    assert paper.startswith("solver.gap = 0.5 is ignored")
+
+
+@pytest.mark.slow
+def test_solve_warns_and_notes_an_ignored_option():
+    from sdc_cvx import Catalog, Mission, solve
+    from sdc_cvx.errors import IgnoredOptionWarning
+
+    catalog = Catalog.paper_case().subset(["1", "2", "3"])
+    with pytest.warns(IgnoredOptionWarning, match="dv_max_mps = 500 is ignored"):
+        solution = solve(catalog, Mission(n=2, dv_max_mps=500.0))
+    assert any("dv_max_mps = 500 is ignored" in note for note in solution.notes)

@@ -28,6 +28,9 @@ DRIFT_INCLINATION_RULES = ("table3", "free")
 INJECTION_MIN_PERIGEE_KM = 150.0
 """Lowest perigee altitude of an injection orbit [km], that of a catalog orbit
 (``inputs.catalog.MIN_PERIGEE_KM``; not imported: this module stays free of pandas)."""
+DRIFT_ALTITUDE_RANGE_KM = (150.0, 2000.0)
+"""Where a drift altitude band may lie [km]: from the lowest perigee of a catalog orbit
+to the top of LEO (the catalog's limits, README "Physical domain")."""
 MAX_TMAX_DAYS = 3652.5
 """The longest mission planned [days]: 10 years (beyond, drag and the debris' decay,
 which the model leaves out, change the orbits more than the drift does)."""
@@ -50,7 +53,8 @@ class Mission:
     min_transfer_days : float
         Minimum transfer duration T_min [days] (paper: 0 in Eq. 16).
     drift_altitude_km : tuple of float
-        Lower and upper altitude bounds of the drift orbits above R_T [km] (paper: 400-1200).
+        Lower and upper altitude bounds of the drift orbits above R_T [km] (paper: 400-1200),
+        within :data:`DRIFT_ALTITUDE_RANGE_KM` (150-2000 km).
     preopt_days : float
         Transfer duration bound T0 of the pre-optimisation [days] (paper: 2 months).
     dv_max_mps : float
@@ -139,8 +143,17 @@ class Mission:
         bounds = self.drift_altitude_km
         if len(bounds) != 2:
             yield f"drift_altitude_km must be (low, high), got {bounds!r}"
+        elif not all(_is_real(b) for b in bounds):
+            yield f"drift_altitude_km must be two numbers (low, high), got {bounds!r}"
         elif not 0 < bounds[0] < bounds[1]:
             yield f"drift_altitude_km must satisfy 0 < low < high, got {bounds!r}"
+        elif not DRIFT_ALTITUDE_RANGE_KM[0] <= bounds[0] < bounds[1] <= DRIFT_ALTITUDE_RANGE_KM[1]:
+            low, high = DRIFT_ALTITUDE_RANGE_KM
+            yield (
+                f"drift_altitude_km must lie within [{low:g}, {high:g}] km, got {bounds!r}: "
+                f"below {low:g} km a drift orbit decays within days, above {high:g} km it "
+                "leaves LEO, where J2 drift takes centuries (the paper: 400-1200 km)"
+            )
         if self.drift_inclination not in DRIFT_INCLINATION_RULES:
             yield (
                 f"drift_inclination must be one of {DRIFT_INCLINATION_RULES}, "
@@ -237,8 +250,9 @@ class Mission:
                     yield f"injection e must be in [0, 1), got {e!r}"
                 if not 0 <= inc <= 180:
                     yield f"injection inc_deg must be in [0, 180], got {inc!r}"
-                if not -360 <= self.injection[3] <= 360:  # 1e308 % 360 is noise, not an angle
-                    yield f"injection raan_deg must be in [-360, 360], got {self.injection[3]!r}"
+                if not -36_000 <= self.injection[3] <= 36_000:  # 1e308 % 360 is noise
+                    yield (f"injection raan_deg must be an angle in [-36000, 36000] deg, "
+                           f"got {self.injection[3]!r}")  # fmt: skip
                 perigee = a_km * (1.0 - e) - R_EARTH / 1e3
                 if a_km > R_EARTH / 1e3 and 0 <= e < 1 and perigee < INJECTION_MIN_PERIGEE_KM:
                     where = "below the Earth's surface" if perigee < 0 else "too low"

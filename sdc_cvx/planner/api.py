@@ -17,12 +17,14 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import time
+import warnings
 from collections.abc import Callable
 
 import numpy as np
 
-from ..errors import MissionInfeasible, SolverFailure
+from ..errors import IgnoredOptionWarning, MissionInfeasible, SolverFailure
 from ..inputs.catalog import Catalog
 from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
@@ -73,9 +75,13 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     """
     _check_types(catalog, mission, solver)
     solver = SolverOptions() if solver is None else solver
+    ignored = ignored_options(mission, solver)
+    for message in ignored:
+        warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     if solver.method == "paper":
-        return sequential.solve(catalog, mission, solver=solver, settings=settings,
-                                progress=progress)  # fmt: skip
+        solution = sequential.solve(catalog, mission, solver=solver, settings=settings,
+                                    progress=progress)  # fmt: skip
+        return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
     catalog = Catalog.paper_case() if catalog is None else catalog
     mission = Mission() if mission is None else mission
     mission.check_candidates(catalog)
@@ -103,7 +109,26 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
             f"the search stopped before finding any plan ({'; '.join(result.notes)}); "
             f"no plan costs less than {result.lower_mps:.2f} m/s: allow more time"
         )
-    return _solution(result, nodes, mission, solver, orbits, records, wall)
+    solution = _solution(result, nodes, mission, solver, orbits, records, wall)
+    return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
+
+
+def ignored_options(mission: Mission | None, solver: SolverOptions) -> list[str]:
+    """The options set away from their defaults that ``solver.method`` does not use."""
+    out = []
+    if (solver.method == "certified" and mission is not None
+            and mission.dv_max_mps != Mission().dv_max_mps):  # fmt: skip
+        out.append(
+            f"mission.dv_max_mps = {mission.dv_max_mps:g} is ignored: it filters the edge "
+            "table of the paper's method (method = 'paper'); the certified search prices "
+            "every transfer"
+        )
+    if solver.method == "paper" and solver.gap != SolverOptions().gap:
+        out.append(
+            f"solver.gap = {solver.gap:g} is ignored: it is the stopping gap of the certified "
+            "search (method = 'certified'); the paper's method proves no bound"
+        )
+    return out
 
 
 def _check_types(catalog, mission, solver) -> None:

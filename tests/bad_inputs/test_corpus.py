@@ -77,6 +77,9 @@ CASES: dict[str, Case] = {
         f"{HEADER}\n1,seven,0,98,10\n", "row 1", "field 'a_km'", "expected"
     ),
     "csv-e-above-one": csv_case(f"{HEADER}\n1,7000,1.5,98,10\n", "field 'e'", "[0, 1)"),
+    "csv-raan-1e308": csv_case(
+        f"{HEADER}\n1,7000,0.001,98,1e308\n", "field 'raan_deg'", "[-36000, 36000]"
+    ),
     "csv-negative-e": csv_case(f"{HEADER}\n1,7000,-0.1,98,10\n", "field 'e'", "[0, 1)"),
     "csv-inclination-200": csv_case(f"{HEADER}\n1,7000,0,200,10\n", "field 'inc_deg'", "[0, 180]"),
     "csv-a-below-earth": csv_case(f"{HEADER}\n1,6000,0,98,10\n", "field 'a_km'", "Earth's radius"),
@@ -160,6 +163,21 @@ CASES: dict[str, Case] = {
     "toml-tmax-negative": scenario_case("n = 3\ntmax_days = -1", "tmax_days must be > 0"),
     "toml-tmax-nan": scenario_case("n = 3\ntmax_days = nan", "tmax_days"),
     "toml-tmax-inf": scenario_case("n = 3\ntmax_days = inf", "mission.tmax_days must be a finite"),
+    "toml-drift-band-100-200": scenario_case(
+        "n = 3\ndrift_altitude_km = [100.0, 200.0]", "mission.drift_altitude_km must lie within"
+    ),
+    "toml-drift-band-to-5000": scenario_case(
+        "n = 3\ndrift_altitude_km = [400.0, 5000.0]", "[150, 2000] km"
+    ),
+    "toml-fallback-unknown": scenario_case(
+        "n = 3",
+        "solver.fallback must name MILP backends",
+        "'NOPE'",
+        extra_toml='[solver]\nfallback = ["NOPE"]\n',
+    ),
+    "cli-fallback-unknown": Case(
+        {}, ["run", "--fallback", "FOO"], ["solver.fallback", "'FOO'"], names="command line"
+    ),
     "toml-drift-band-reversed": scenario_case(
         "n = 3\ndrift_altitude_km = [1200.0, 400.0]", "drift_altitude_km"
     ),
@@ -183,7 +201,7 @@ CASES: dict[str, Case] = {
         "below the Earth's surface",
     ),
     "toml-injection-raan-1e308": scenario_case(
-        "n = 2\ninjection = [7000.0, 0.001, 98.0, 1e308]", "injection raan_deg must be in"
+        "n = 2\ninjection = [7000.0, 0.001, 98.0, 1e308]", "injection raan_deg must be an angle in"
     ),
     "toml-catalog-missing": Case(
         {"scenario.toml": '[catalog]\npath = "nowhere.csv"\n'},

@@ -107,6 +107,6 @@ def test_an_injection_orbit_is_checked_like_a_catalog_orbit():
     assert INJECTION_MIN_PERIGEE_KM == MIN_PERIGEE_KM
     with pytest.raises(MissionError, match="below the Earth's surface"):
         Mission(injection=(7000.0, 0.1, 98.0, 0.0))
-    with pytest.raises(MissionError, match="raan_deg must be in"):
+    with pytest.raises(MissionError, match="raan_deg must be an angle in"):
         Mission(injection=(7000.0, 0.001, 98.0, 1e308))
     Mission(injection=(7000.0, 0.001, 98.0, -30.0))
