@@ -43,6 +43,7 @@ if TYPE_CHECKING:  # the commands import what they use: --help stays light
 INPUT_ERROR = 2
 INFEASIBLE = 3
 SOLVER_FAILED = 4
+INTERRUPTED = 130  # 128 + SIGINT, the shell's convention
 EXIT_CODES: dict[type[SdcError], int] = {
     InputError: INPUT_ERROR,  # CatalogError, MissionError, ScenarioError
     SweepError: INPUT_ERROR,
@@ -254,6 +255,13 @@ def iteration_line(record) -> str:
     ).rstrip()
 
 
+def remove_empty(folders: list[Path]) -> None:
+    """Remove ``folders`` (innermost first) that are empty; leave the others."""
+    for folder in folders:
+        with contextlib.suppress(OSError):
+            folder.rmdir()
+
+
 class RunProgress:
     """The progress of a run: to stderr when asked (a terminal), and always to ``run.log``.
 
@@ -266,12 +274,13 @@ class RunProgress:
     """
 
     def __init__(self, show: bool, heartbeat_s: float = 5.0, live_log: Path | None = None,
-                 stream=None):  # fmt: skip
+                 stream=None, made: list[Path] | None = None):  # fmt: skip
         import threading
         import time
 
         self.show, self.heartbeat_s, self._time = show, heartbeat_s, time.monotonic
         self.live_log = live_log
+        self._made = list(made or [])
         self._file = stream
         if live_log is not None and stream is None:
             live_log.parent.mkdir(parents=True, exist_ok=True)
@@ -303,6 +312,7 @@ class RunProgress:
         if self._file is not None:
             with self._lock:
                 self._file.close()
+        remove_empty(self._made)  # the folders made for --out, unless the run folder is there
 
     def say(self, line: str, *, show: bool = True) -> None:
         from datetime import UTC, datetime
@@ -474,15 +484,19 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     # leaves it there, the next run into OUT replaces it), then into the folder as run.log;
     # it also locks OUT against a second run at once
     live_log = stream = None
+    made: list[Path] = []  # the folders above --out this run creates (removed if unused)
     if out_dir is not None:
         live_log = live_log_path(out_dir)
+        made = [p for p in (live_log.parent, *live_log.parent.parents) if not p.exists()]
         try:
+            live_log.parent.mkdir(parents=True, exist_ok=True)
             stream = open_live_log(out_dir)
-        except FileExistsError as err:  # another run is writing OUT; a file of the user's
-            fail(f"--out: {err}")
-        except OSError as err:
+        except OSError as err:  # FileExistsError: another run is writing OUT, a user's file
+            remove_empty(made)
+            if isinstance(err, FileExistsError):
+                fail(f"--out: {err}")
             fail(f"--out: cannot write the run's log {live_log}: {err.strerror or err}")
-    with RunProgress(show_progress, live_log=live_log, stream=stream) as steps:
+    with RunProgress(show_progress, live_log=live_log, stream=stream, made=made) as steps:
         steps.say(header, show=False)
         steps.set_phase(
             "certified search: leg costs of every pair, cheap paths, then the first relaxation"
@@ -495,10 +509,13 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
             click.echo(f"warning: {message}", err=True)
             steps.say(f"warning: {message}", show=False)
         try:
-            with warnings.catch_warnings():
+            with warnings.catch_warnings(), interruptible(steps, solver.method) as stop:
                 warnings.simplefilter("ignore", IgnoredOptionWarning)
                 solution = solve(catalog, mission, solver=solver, progress=steps.iteration,
-                                 log=steps.search_step)  # fmt: skip
+                                 log=steps.search_step, stop=stop)  # fmt: skip
+        except KeyboardInterrupt:
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            fail(f"interrupted: nothing written{kept}", INTERRUPTED)
         except MissionInfeasible as err:
             steps.discard_live_log()  # a proven answer: the message says it all
             fail(f"infeasible mission: {err}", exit_code(err))
@@ -541,6 +558,36 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         click.echo(f"results   {folder}/solution.json")
     if not solution.status.is_solved or solution.status in unsettled:
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
+
+
+@contextlib.contextmanager
+def interruptible(steps: RunProgress, method: str):
+    """Ctrl-C during a solve: the certified search stops at its next step with the best
+    plan so far (a second Ctrl-C, or the paper's method, stops at once: nothing written).
+
+    Yields the ``stop`` callable of :func:`sdc_cvx.planner.api.solve`.
+    """
+    import signal
+    import threading
+
+    asked = threading.Event()
+
+    def on_sigint(signum, frame):
+        if asked.is_set() or method != "certified":
+            raise KeyboardInterrupt
+        asked.set()
+        steps.say("interrupted: stopping at the next step with the best plan so far and its "
+                  "gap (Ctrl-C again to stop at once, writing nothing)")  # fmt: skip
+
+    try:
+        previous = signal.signal(signal.SIGINT, on_sigint)
+    except ValueError:  # not the main thread: Ctrl-C keeps its usual meaning
+        yield asked.is_set
+        return
+    try:
+        yield asked.is_set
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def run_header(catalog: Catalog, mission, solver) -> str:
@@ -659,7 +706,7 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     """
     from .report.run_folder import new_run_folder
     from .study.results import SOLVED_STATUSES
-    from .study.runner import run_study
+    from .study.runner import run_study, sweep_folder_problem
     from .study.study import load_study
 
     if resume and out_dir is None:
@@ -678,6 +725,9 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
         if (out / "results.csv").exists() and not resume:
             fail(f"--out: {out} already holds results.csv: add --resume to finish that "
                  "sweep, or choose a new folder")  # fmt: skip
+        problem = sweep_folder_problem(out)
+        if problem is not None:
+            fail(f"--out: {problem}")
     folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
     show = sys.stderr.isatty() if progress is None else progress
     try:
@@ -685,6 +735,10 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
                             progress=show)  # fmt: skip
     except SweepError as err:
         fail(str(err))
+    except KeyboardInterrupt:
+        fail(f"interrupted: the scenarios finished so far are in {folder}/results.csv; "
+             f"finish the others with: python -m sdc_cvx sweep {study_file} --resume "
+             f"--out {folder}", INTERRUPTED)  # fmt: skip
     done = results["status"].isin(SOLVED_STATUSES)
     click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
                f"{folder}/results.csv")  # fmt: skip

@@ -445,3 +445,49 @@ def test_run_json_prints_json_only_through_a_real_process(tmp_path):
     data = json.loads(result.stdout)  # no backend banner or progress line around it
     assert data["path"] and data["total_dv_mps"] > 0
     assert data == json.loads((tmp_path / "out" / "solution.json").read_text())
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_run_keeps_the_best_plan_with_its_gap(tmp_path):
+    import signal
+
+    out, live = tmp_path / "out", tmp_path / "out.log"
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    run = subprocess.Popen([sys.executable, "-m", "sdc_cvx", "run", "--n", "6", "--quiet",
+                            "--out", str(out)], cwd=REPO, env=env, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)  # fmt: skip
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and run.poll() is None:
+        if live.exists() and " plan " in live.read_text():  # a plan is held
+            break
+        time.sleep(0.05)
+    run.send_signal(signal.SIGINT)
+    stdout, stderr = run.communicate(timeout=300)
+    assert run.returncode == 0, stderr
+    data = json.loads((out / "solution.json").read_text())
+    assert data["status"] in ("feasible", "optimal") and data["lower_bound_mps"] is not None
+    if data["status"] == "feasible":  # stopped before the search ended: said so, with its gap
+        assert "interrupted: the best plan so far" in data["notes"]
+        assert "feasible, gap " in stdout and "interrupted" in stdout
+    assert not live.exists() and not list(tmp_path.glob(".*partial"))
+
+
+@pytest.mark.slow
+def test_a_full_disk_is_exit_4_and_leaves_nothing_beside_the_folder(tmp_path, monkeypatch):
+    import errno
+
+    from sdc_cvx.report import run_folder
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    csv = tmp_path / "d.csv"
+    csv.write_text("id,a_km,e,inc_deg,raan_deg\n1,7000,0.001,98,10\n2,7050,0.001,98,40\n")
+    monkeypatch.setattr(run_folder, "_swap_in", full)
+    out = tmp_path / "work" / "out"
+    result = CliRunner().invoke(main, ["run", "--catalog", str(csv), "--n", "2", "--quiet",
+                                       "--out", str(out)])  # fmt: skip
+    assert result.exit_code == 4, result.output
+    assert "cannot write the run folder" in result.stderr and "No space left" in result.stderr
+    assert "invalid input" not in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d.csv"]  # no out, out.log, stage

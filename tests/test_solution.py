@@ -62,3 +62,22 @@ def test_solve_warns_and_notes_an_ignored_option():
     with pytest.warns(IgnoredOptionWarning, match="dv_max_mps = 500 is ignored"):
         solution = solve(catalog, Mission(n=2, dv_max_mps=500.0))
     assert any("dv_max_mps = 500 is ignored" in note for note in solution.notes)
+
+
+def test_a_wide_requested_gap_is_not_called_optimal():
+    """--gap 0.5 printed "optimal (8.11 %)" (issue 20, item 8): optimal is 0.1 % at most."""
+    from dataclasses import replace
+
+    from sdc_cvx import Catalog, Mission, SolverOptions, solve
+    from sdc_cvx.solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL
+
+    catalog = Catalog.paper_case().subset(["1", "2", "3", "4", "5"])
+    solution = solve(catalog, Mission(n=3), solver=SolverOptions(gap=0.5))
+    tight = solution.gap_mps <= max(OPTIMAL_GAP_REL * solution.total_dv_mps, OPTIMAL_GAP_MPS)
+    assert solution.status == (RunStatus.OPTIMAL if tight else RunStatus.WITHIN_GAP)
+    assert solution.certified and solution.gap_requested == 0.5
+    assert solution.to_dict()["gap_requested"] == 0.5
+    wide = replace(solution, status=RunStatus.WITHIN_GAP,
+                   lower_bound_mps=0.9189 * solution.total_dv_mps)  # fmt: skip
+    assert wide.quality().startswith("within 8.11 % of the optimum (requested 50 %): gap ")
+    assert "optimal" not in wide.summary().splitlines()[1]

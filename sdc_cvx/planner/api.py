@@ -29,7 +29,7 @@ from ..inputs.catalog import Catalog
 from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
 from ..network.edges import drift_radius_bounds, node_orbits
-from ..solution import IterationRecord, RunStatus, Solution
+from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunStatus, Solution
 from . import sequential
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import schedule_plan
@@ -39,7 +39,8 @@ from .sequential import MissionNodes, SequentialSettings, make_legs
 def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
           solver: SolverOptions | None = None, settings: SequentialSettings | None = None,
           progress: Callable[[IterationRecord], None] | None = None,
-          log: Callable[[str], None] | None = None) -> Solution:  # fmt: skip
+          log: Callable[[str], None] | None = None,
+          stop: Callable[[], bool] | None = None) -> Solution:  # fmt: skip
     """Plan the mission: select, order and transfer between n of the catalog's debris.
 
     Parameters
@@ -59,6 +60,9 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         Called with one line of text per step of the certified search as it starts or
         ends (seeding plans, each refinement of the date cells, each relaxation MILP and
         its bound), so that a long run never goes silent.
+    stop : callable, optional
+        Certified search: asked between steps; True ends the search with the best plan so
+        far and its gap, status ``feasible`` (the command line's Ctrl-C).
 
     Returns
     -------
@@ -101,7 +105,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
     result = certify(orbits, _certified_nodes(nodes, mission), a_low, a_high, solver=solver,
                      gap_rel=solver.gap, time_limit_s=solver.time_limit_s,
-                     on_iteration=on_iteration, progress=log, names=ids)  # fmt: skip
+                     on_iteration=on_iteration, progress=log, names=ids, stop=stop)  # fmt: skip
     if result.status == "infeasible":
         raise MissionInfeasible(_infeasible_message(mission))
     if result.status == "no_plan":
@@ -202,6 +206,10 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
     ids = nodes.catalog.ids
     status = RunStatus.OPTIMAL if result.status == "optimal" else RunStatus.FEASIBLE
     total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
+    lower = float(min(result.lower_mps, total))
+    optimal_gap = max(OPTIMAL_GAP_REL * total, OPTIMAL_GAP_MPS) * (1 + 1e-9)
+    if status == RunStatus.OPTIMAL and total - lower > optimal_gap:
+        status = RunStatus.WITHIN_GAP  # the gap asked for, wider than what is called optimal
     return Solution(
         path=tuple(ids[k] for k in path),
         legs=make_legs(ids, path, schedule.a_drift, schedule.inc_drift, schedule.side, plan),
@@ -222,5 +230,6 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
         timings={"total_s": time.perf_counter() - wall, "search_s": result.seconds},
         notes=tuple(notes),
         method="certified",
-        lower_bound_mps=float(min(result.lower_mps, total)),
+        lower_bound_mps=lower,
+        gap_requested=solver.gap,
     )

@@ -332,7 +332,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             progress: Callable[[str], None] | None = None,
             on_iteration: Callable[[dict], None] | None = None, names=None,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
-            split_pieces: int = 2) -> CertifiedResult:  # fmt: skip
+            split_pieces: int = 2, stop: Callable[[], bool] | None = None,
+            ) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
     Parameters
@@ -361,6 +362,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     initial_cells, split_pieces : int
         Date cells per debris at the start (fewer when the edges are many, see
         ``FIRST_ARCS``), and pieces a used cell is split into.
+    stop : callable, optional
+        Asked between steps; True ends the search as a time limit does (the best plan
+        with its gap): the command line's Ctrl-C.
 
     Returns
     -------
@@ -369,6 +373,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     clock = time.perf_counter()
     solver = SolverOptions() if solver is None else solver
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
+    stop = stop or (lambda: False)
     search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
                      say=progress or (lambda line: None), initial_cells=initial_cells,
                      names=names, path_tol_rel=gap_rel / 2)  # fmt: skip
@@ -386,7 +391,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         net, arcs, network_lower = search.network()
         beam = []  # the uncut beam paths of the current arcs, cheapest first
         for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
-            if len(arcs) == 0 or time.perf_counter() >= deadline:
+            if len(arcs) == 0 or time.perf_counter() >= deadline or stop():
                 break
             beam = search.candidates(arcs, CANDIDATES)
             open_paths = search.open_paths(beam, gap_rel)
@@ -404,6 +409,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             search.prove(np.inf)  # no path of L legs at all, or none below the plan held
             break
         remaining = deadline - time.perf_counter()
+        if stop() and np.isfinite(search.upper):
+            search.notes.append("interrupted: the best plan so far")
+            break
         if remaining <= 0:
             search.notes.append(f"time limit ({time_limit_s:g} s) reached")
             break
@@ -447,6 +455,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             break
         if stopped and out_of_time:
             search.notes.append(f"time limit ({time_limit_s:g} s) reached during a MILP")
+            break
+        if stop() and np.isfinite(search.upper):
+            search.notes.append("interrupted: the best plan so far")
             break
         _refine(search.parts, net, arcs, result.arcs, split_pieces)
     else:

@@ -79,8 +79,12 @@ _WATCH_SECONDS = 0.5
 
 def _init_worker(sweep_pid: int) -> None:
     """Initializer of the local pool's processes: die with the sweep, one BLAS thread."""
+    import signal
+
     _die_with(sweep_pid)
     _one_thread_per_worker()
+    # Ctrl-C is the sweep's to handle (it says how to resume); a worker ends with it
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _die_with(sweep_pid: int) -> None:
@@ -174,7 +178,9 @@ def _locked(out: Path) -> Iterator[None]:
             fcntl.lockf(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
             raise SweepError(f"another sweep is writing to {out}") from None
-        yield
-        (out / _LOCK_NAME).unlink(missing_ok=True)  # a finished folder keeps no lock file
+        try:
+            yield
+        finally:  # finished, refused (a --resume of another study) or interrupted: no lock file
+            (out / _LOCK_NAME).unlink(missing_ok=True)
     finally:
         handle.close()

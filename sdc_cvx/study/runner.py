@@ -160,6 +160,9 @@ def run_study(
     if executor is None and scheduler is None:
         _check_main_guard()
     out = Path(out_dir)
+    problem = sweep_folder_problem(out)
+    if problem is not None:
+        raise SweepError(problem)
     planned = [_plan(item) for item in study.scenarios]
     out.mkdir(parents=True, exist_ok=True)
     with _locked(out):
@@ -212,6 +215,25 @@ def sweep(
     return run_study(study, folder, **kwargs)
 
 
+SWEEP_FOLDER_MARKERS = ("results.csv", "study.toml", "scenarios")
+"""A folder holding one of these is a sweep folder (finished, or killed early)."""
+
+
+def sweep_folder_problem(out: Path) -> str | None:
+    """Why ``out`` cannot take a sweep, or None: a file, or a non-empty folder that is not
+    a sweep folder (an earlier run folder, a folder of the user's) is refused, as ``run``
+    refuses a folder that is not a run folder."""
+    if out.exists() and not out.is_dir():
+        return f"{out} is a file, not a folder"
+    foreign = not any((out / name).exists() for name in SWEEP_FOLDER_MARKERS)
+    if out.is_dir() and any(out.iterdir()) and foreign:
+        return (
+            f"{out} is not empty and is not a sweep folder (no "
+            f"{', '.join(SWEEP_FOLDER_MARKERS)}); choose a new or empty folder"
+        )
+    return None
+
+
 def _check_main_guard() -> None:
     """Refuse a sweep started at the top level of a script without a main guard.
 
@@ -231,6 +253,10 @@ def _check_main_guard() -> None:
         frame = frame.f_back
     if frame is None:
         return  # not called from a script's top level (a function, a notebook, the CLI)
+    spec = frame.f_globals.get("__spec__")
+    name = getattr(spec, "name", None) or ""
+    if name == "__main__" or name.endswith(".__main__"):
+        return  # python -m package: workers do not import it again (multiprocessing.spawn)
     path, line = frame.f_code.co_filename, frame.f_lineno
     try:
         tree = ast.parse(Path(path).read_text(encoding="utf-8"))
@@ -255,7 +281,7 @@ def _check_main_guard() -> None:
                 return
     raise SweepError(
         f"{path}, line {line}: the sweep is started at the top level of the script, "
-        "without `if __name__ == \"__main__\":`; its worker processes import the script "
+        'without `if __name__ == "__main__":`; its worker processes import the script '
         "and would start the sweep again: put the call under that guard (or pass "
         "executor= or scheduler=)"
     )
@@ -313,7 +339,24 @@ def _previous_rows(out: Path, study: Study, planned, resume: bool) -> dict[str, 
 
 
 def _write_inputs(out: Path, study: Study, planned: Sequence[_Planned]) -> None:
-    write_atomic(out / "study.toml", study.text if study.text is not None else study.to_toml())
+    """``study.toml`` (self-contained: it resumes the sweep from the folder, wherever the
+    original's relative paths pointed; the original text follows as comments) and each
+    scenario's TOML."""
+    text = study.to_toml()
+    source = getattr(study, "source", None)
+    if (
+        study.text is not None
+        and source is not None
+        and Path(source).resolve() == (out / "study.toml").resolve()
+    ):
+        text = study.text  # resumed from the folder's own copy: kept as it is
+    elif study.text is not None:
+        where = f" ({study.source})" if getattr(study, "source", None) else ""
+        original = "".join(f"# {line}\n" for line in study.text.splitlines())
+        text = (f"# the study as run, self-contained (resume: sdc-cvx sweep THIS_FILE "
+                f"--resume --out THIS_FOLDER)\n{text}\n# the study file as given{where}:\n"
+                f"{original}")  # fmt: skip
+    write_atomic(out / "study.toml", text)
     for p in planned:
         folder = out / "scenarios" / p.item.key
         folder.mkdir(parents=True, exist_ok=True)

@@ -317,6 +317,24 @@ CASES: dict[str, Case] = {
         ["already holds results.csv", "--resume"],
         names="done",
     ),
+    "sweep-into-a-run-folder": Case(
+        {"study.toml": STUDY, "run/solution.json": "{}", "run/legs.csv": "x\n"},
+        ["sweep", "{in}/study.toml", "--out", "{in}/run"],
+        ["--out", "is not a sweep folder"],
+        names="run",
+    ),
+    "sweep-into-a-folder-of-the-user": Case(
+        {"study.toml": STUDY, "mine/notes.txt": "keep"},
+        ["sweep", "{in}/study.toml", "--out", "{in}/mine"],
+        ["--out", "not empty and is not a sweep folder"],
+        names="mine",
+    ),
+    "sweep-refused-resume-leaves-no-lock": Case(
+        {"study.toml": STUDY, "done/results.csv": "key,scenario_sha\nx,abc\n"},
+        ["sweep", "{in}/study.toml", "--out", "{in}/done", "--resume"],
+        ["is not a sweep results table"],
+        names="done",
+    ),
     "sweep-bad-study": Case(
         {"study.toml": 'base = "nowhere.toml"\n'}, ["sweep", "{in}/study.toml"], ["nowhere.toml"]
     ),

@@ -179,7 +179,9 @@ def test_results_table_and_files(reference, study_file):
     assert solved["path"].str.count("->").tolist() == [2, 2, 3, 3]
     assert (solved["iterations"] > 0).all() and (solved["backend"] == "HIGHS").all()
     pd.testing.assert_frame_equal(read_results(out), reference)
-    assert (out / "study.toml").read_text() == STUDY
+    copy = (out / "study.toml").read_text()  # self-contained, the original as comments
+    assert "".join(f"# {line}\n" for line in STUDY.splitlines()) in copy
+    assert load_study(out / "study.toml").scenarios == study.scenarios
     for item in study.scenarios:
         folder = out / "scenarios" / item.key
         as_run = Scenario.load(folder / "scenario.toml")
@@ -317,3 +319,35 @@ def test_a_script_without_a_main_guard_is_told_before_any_worker_starts(tmp_path
     result = subprocess.run([sys.executable, "guarded.py"], cwd=tmp_path, env=env,
                             capture_output=True, text=True, timeout=120)  # fmt: skip
     assert result.returncode == 0 and result.stdout == "accepted\n", result.stderr
+
+
+@pytest.mark.slow
+def test_the_study_copied_into_the_folder_resumes_that_sweep(tmp_path, monkeypatch):
+    """Its relative paths pointed beside the original file: the copy is self-contained."""
+    import concurrent.futures as cf
+
+    from sdc_cvx.study.runner import run_study
+    from sdc_cvx.study.study import load_study
+
+    given = tmp_path / "given"
+    given.mkdir()
+    (given / "d.csv").write_text(
+        "id,a_km,e,inc_deg,raan_deg\n1,7000,0.001,98,10\n2,7050,0.001,98,40\n3,7100,0.001,98,70\n"
+    )
+    (given / "base.toml").write_text('[catalog]\npath = "d.csv"\n')
+    (given / "study.toml").write_text('base = "base.toml"\n[grid]\n"mission.n" = [2, 3]\n')
+    out = tmp_path / "out"
+    with cf.ThreadPoolExecutor(1) as pool:
+        first = run_study(load_study(given / "study.toml"), out, executor=pool, progress=False)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    copy = load_study(out / "study.toml")
+    ran = []
+    with cf.ThreadPoolExecutor(1) as pool:
+        again = run_study(copy, out, executor=pool, resume=True, progress=ran.append)
+    assert len(first) == len(again) == 2
+    assert list(again["total_dv_mps"]) == list(first["total_dv_mps"])
+    assert ran and all(p.row is None and p.remaining == 0 for p in ran)  # nothing run again
+    assert '# base = "base.toml"' in (out / "study.toml").read_text()  # the original, kept
+    assert not (out / ".sweep.lock").exists()
