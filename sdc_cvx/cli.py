@@ -440,6 +440,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         new_run_folder,
         open_live_log,
         out_folder_problem,
+        remove_stale_stages,
         write_run,
     )
     from .solution import RunStatus
@@ -491,6 +492,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         try:
             live_log.parent.mkdir(parents=True, exist_ok=True)
             stream = open_live_log(out_dir)
+            remove_stale_stages(out_dir)  # what a killed run left aside, now that OUT is ours
         except OSError as err:  # FileExistsError: another run is writing OUT, a user's file
             remove_empty(made)
             if isinstance(err, FileExistsError):

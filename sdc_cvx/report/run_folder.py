@@ -333,7 +333,7 @@ def write_run(
             problem = out_folder_problem(given)  # again, now that no other save can run
             if problem is not None:
                 raise FileExistsError(problem)
-            _remove_stale_stages(folder)
+            remove_stale_stages(folder)
             stage = Path(
                 tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial")
             )
@@ -391,8 +391,13 @@ def _pause_before_swap() -> None:
         time.sleep(float(seconds))
 
 
-def _remove_stale_stages(folder: Path) -> None:
-    """Remove the hidden folders a killed write left next to ``folder``."""
+def remove_stale_stages(folder: Path | str) -> None:
+    """Remove the hidden folders a killed write left next to ``folder``.
+
+    ``run`` calls it as it starts, once it holds the folder's lock (:func:`open_live_log`),
+    so what a kill left aside lasts until the next run into the folder starts.
+    """
+    folder = real_folder(folder)
     for stale in folder.parent.glob(f".{folder.name}.*.partial"):
         if stale.is_dir():
             shutil.rmtree(stale, ignore_errors=True)

@@ -316,3 +316,34 @@ def test_two_saves_into_one_folder_at_once_follow_each_other(solution, tmp_path)
 def whole_without_figures(folder: Path) -> bool:
     names = {p.name for p in folder.iterdir()}
     return names == {"solution.json", "legs.csv", "iterations.csv", "edges.csv"}
+
+
+@pytest.mark.slow
+def test_a_second_run_into_a_busy_folder_is_refused_and_a_kill_is_cleaned_at_the_next_start(
+    tmp_path,
+):
+    out, live = tmp_path / "run", tmp_path / "run.log"
+    env = {"PYTHONPATH": str(REPO)}
+    first = run_cli(out, {**env, "SDC_CVX_PAUSE_BEFORE_SWAP": "60"})
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not list(tmp_path.glob(".run.*.partial/solution.json")):
+        time.sleep(0.1)
+    second = subprocess.run(
+        [sys.executable, "-m", "sdc_cvx", "run", "--n", "3", "--quiet", "--out", str(out)],
+        cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert second.returncode == 2
+    assert "another sdc_cvx run is writing" in second.stderr and not out.exists()
+    first.send_signal(signal.SIGKILL)
+    first.wait()
+    left = list(tmp_path.glob(".run.*.partial"))
+    assert live.exists() and left  # what the kill left: until the next run starts
+    third = run_cli(out, env)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and third.poll() is None:
+        text = live.read_text() if live.exists() else ""
+        if "Choosing 3 of 11" in text and "writing the run folder" not in text:
+            break  # the third run's own log: it has started and not reached the writing
+        time.sleep(0.05)
+    assert not any(p.exists() for p in left)  # gone as the next run started
+    assert third.wait(timeout=120) == 0 and whole(out) and not live.exists()
