@@ -107,6 +107,7 @@ class IterationRecord:
     status: str
     note: str = ""
     rejected: str = ""  # why the driver rejected this step ("" if it was not)
+    elapsed_s: float | None = None  # certified search: seconds from its start to this bound
 
     def to_dict(self) -> dict:
         out = asdict(self)
@@ -129,7 +130,8 @@ class Solution:
     ``gap_mps`` (``gap_rel`` of it) above the optimum; ``status`` is then ``optimal``
     (within 0.1 % or 0.01 m/s, :data:`OPTIMAL_GAP_REL`), ``within_gap`` (within a wider
     gap the user asked for, ``gap_requested``) or ``feasible`` (a limit or an interrupt
-    stopped the search first).  The
+    stopped the search first); ``search_trace`` is how the bound and the best plan
+    moved: ``(seconds, bound, plan)`` at each change, None where there was none yet.  The
     paper's method proves no bound (``lower_bound_mps`` is None); its
     ``status``: ``converged`` (the path survived a MILP
     around its re-optimised point), ``converged_unconfirmed`` (it kept changing after
@@ -156,6 +158,7 @@ class Solution:
     method: str = "paper"
     lower_bound_mps: float | None = None
     gap_requested: float | None = None
+    search_trace: tuple[tuple[float, float | None, float | None], ...] = ()
 
     @property
     def certified(self) -> bool:
@@ -225,6 +228,10 @@ class Solution:
             "gap_mps": self.gap_mps,
             "gap_rel": self.gap_rel,
             "gap_requested": self.gap_requested,
+            "search_trace": [
+                {"seconds": t, "lower_bound_mps": lower, "plan_mps": plan}
+                for t, lower, plan in self.search_trace
+            ],
             "backend": self.backend,
             "legs": [leg.to_dict() for leg in self.legs],
             "initial_legs": [leg.to_dict() for leg in self.initial_legs],

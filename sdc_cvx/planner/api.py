@@ -182,14 +182,16 @@ def _certified_nodes(nodes: MissionNodes, mission: Mission) -> CertifiedNodes:
 
 def _record(row: dict, ids, index: int) -> IterationRecord:
     """One iteration of the certified loop in the columns of the iteration table."""
+    relaxation = "-".join(ids[k] for k in row["path"]) or "none"
     return IterationRecord(
-        iteration=index, path=tuple(ids[k] for k in row["path"]),
+        iteration=index, path=tuple(ids[k] for k in row.get("plan_path", ())),
         dv_linearized_mps=_finite(row["relaxation_mps"]), dv_true_mps=_finite(row["upper_mps"]),
         duration_true_days=None, nodes=row["nodes"], seconds=row["seconds"],
         solve_seconds=row["solve_seconds"], cvxpy_seconds=row["cvxpy_seconds"], alpha_km=None,
-        status="bound",
-        note=f"lower bound {row['lower_mps']:.2f} m/s, best plan {row['upper_mps']:.2f} m/s, "
-             f"{row['arcs']} arcs over {row['cells']} date cells")  # fmt: skip
+        status="bound", elapsed_s=row.get("elapsed"),
+        note=f"lower bound {row['lower_mps']:.2f} m/s, best plan {row['upper_mps']:.2f} m/s "
+             f"(path), relaxation's path {relaxation}, {row['arcs']} arcs over "
+             f"{row['cells']} date cells")  # fmt: skip
 
 
 def _finite(value):
@@ -232,4 +234,5 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
         method="certified",
         lower_bound_mps=lower,
         gap_requested=solver.gap,
+        search_trace=tuple((float(t), _finite(b), _finite(u)) for t, b, u in result.trace),
     )

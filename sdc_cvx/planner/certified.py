@@ -117,6 +117,9 @@ class CertifiedResult:
         ``optimal``: within the requested gap; ``feasible``: a limit stopped the search;
         ``infeasible``: proven that no plan exists; ``no_plan``: stopped before any plan.
     log : list of dict
+    trace : tuple of (float, float, float)
+        ``(seconds, bound, plan)`` each time the bound or the plan changed, seconds from
+        the start of :func:`certify` (the setup included).
     """
 
     path: tuple[int, ...]
@@ -131,6 +134,7 @@ class CertifiedResult:
     notes: tuple[str, ...] = ()
     edges: int = 0
     paths_certified: int = 0
+    trace: tuple = ()
 
     @property
     def gap_mps(self) -> float:
@@ -263,6 +267,7 @@ class _Search:
         self.upper, self.path, self.schedule = np.inf, (), None
         self.settled: dict[tuple, float] = {}  # path -> its certified lower bound [m/s]
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
+        self.trace: list[tuple[float, float, float]] = []  # (clock, bound, plan) on a change
         self.completion = None  # per node, cheapest walk of k legs from it (network())
         self.notes: list[str] = []
 
@@ -291,6 +296,7 @@ class _Search:
         total = schedule.upper_mps + self.node_cost(path)
         if total < self.upper:
             self.upper, self.path, self.schedule = total, path, schedule
+            self.trace.append((time.perf_counter(), self.proven, self.upper))
             self.say(f"  plan {self.label(path)}: {total:.2f} m/s ({why})")
 
     def network(self):
@@ -308,7 +314,10 @@ class _Search:
     def prove(self, relaxation_bound: float) -> float:
         """Raise the bound: every plan is on a settled path or above the relaxation's."""
         settled = min(self.settled.values(), default=np.inf)
-        self.proven = max(self.proven, min(relaxation_bound, settled))
+        proven = max(self.proven, min(relaxation_bound, settled))
+        if proven > self.proven:
+            self.trace.append((time.perf_counter(), proven, self.upper))
+        self.proven = proven
         return self.proven
 
     def candidates(self, arcs, count: int):
@@ -439,12 +448,14 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         if result.path and np.isfinite(result.lower_mps):
             search.try_path(result.path, "relaxation")
         lower = search.prove(result.lower_mps)
-        row = dict(iteration=iteration, path=result.path, relaxation_mps=result.lower_mps,
+        row = dict(iteration=iteration, path=result.path, plan_path=search.path,
+                   relaxation_mps=result.lower_mps,
                    lower_mps=lower, upper_mps=search.upper, arcs=len(arcs),
                    cells=search.parts.count(), nodes=result.report.nodes,
                    solve_seconds=result.report.solve_seconds, backend=result.report.backend,
                    cvxpy_seconds=result.report.overhead_seconds,
-                   seconds=time.perf_counter() - started)  # fmt: skip
+                   seconds=time.perf_counter() - started,
+                   elapsed=time.perf_counter() - clock)  # fmt: skip
         rows.append(row)
         if on_iteration is not None:
             on_iteration(row)
@@ -467,7 +478,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                            min(search.proven, search.upper), status, rows, milp_solves,
                            search.parts.count(), time.perf_counter() - clock,
                            tuple(search.notes), edges=int(len(search.edge_from)),
-                           paths_certified=len(search.settled))  # fmt: skip
+                           paths_certified=len(search.settled),
+                           trace=tuple((t - clock, b, u) for t, b, u in search.trace))  # fmt: skip
 
 
 def _allowed(upper, gap_rel) -> float:
