@@ -294,7 +294,7 @@ class RunProgress:
         self._thread = threading.Thread(target=self._beat, daemon=True)
 
     def __enter__(self):
-        if self.show:
+        if self.show or self._file is not None:  # the heartbeat goes to the live log too
             self._thread.start()
         return self
 
@@ -355,7 +355,7 @@ class RunProgress:
         while not self._stop.wait(min(1.0, self.heartbeat_s)):
             now = self._time()
             if now - self._last >= self.heartbeat_s:
-                self.say(f"  ... {now - self.started:5.0f} s: {self.phase}")
+                self.say(f"  ... {now - self.started:5.0f} s: {self.phase}", show=self.show)
 
 
 @main.command()

@@ -491,3 +491,19 @@ def test_a_full_disk_is_exit_4_and_leaves_nothing_beside_the_folder(tmp_path, mo
     assert "cannot write the run folder" in result.stderr and "No space left" in result.stderr
     assert "invalid input" not in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["d.csv"]  # no out, out.log, stage
+
+
+def test_the_heartbeat_reaches_the_live_log_when_stderr_is_quiet(tmp_path, capsys):
+    """run.log gets the heartbeat too, not only a terminal (issue 20, item 9)."""
+    from sdc_cvx.cli import RunProgress
+    from sdc_cvx.report.run_folder import open_live_log
+
+    stream = open_live_log(tmp_path / "out")
+    with RunProgress(show=False, heartbeat_s=0.1, live_log=tmp_path / "out.log",
+                     stream=stream) as steps:  # fmt: skip
+        steps.search_step("  cost tables: 40% done (92352 of 230880 edges, 10 s)")
+        time.sleep(0.6)
+    steps.discard_live_log()
+    beats = [line for line in steps.log_text().splitlines() if " s: certified search" in line]
+    assert beats and all("cost tables: 40% done" in line for line in beats)
+    assert capsys.readouterr().err == ""  # quiet: nothing on the terminal

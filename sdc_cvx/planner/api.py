@@ -109,9 +109,11 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     if result.status == "infeasible":
         raise MissionInfeasible(_infeasible_message(mission))
     if result.status == "no_plan":
+        bound = (f"; no plan costs less than {result.lower_mps:.2f} m/s"
+                 if np.isfinite(result.lower_mps) else "")  # fmt: skip
         raise SolverFailure(
-            f"the search stopped before finding any plan ({'; '.join(result.notes)}); "
-            f"no plan costs less than {result.lower_mps:.2f} m/s: allow more time"
+            f"the search stopped before finding any plan ({'; '.join(result.notes)}){bound}: "
+            "allow more time (--time-limit, solver.time_limit_s)"
         )
     solution = _solution(result, nodes, mission, solver, orbits, records, wall)
     return dataclasses.replace(solution, notes=(*solution.notes, *ignored))

@@ -258,7 +258,7 @@ class _Search:
             "cost tables of every edge"
         )
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
-                                   a_low, a_high)  # fmt: skip
+                                   a_low, a_high, on_chunk=self._setup_clock())  # fmt: skip
         self.edge_floor = self.legs.floor(np.arange(len(self.edge_from)))
         # the first network holds every edge: fewer cells when they are many (481 TLE
         # fragments: 230 880 edges, 2 cells each instead of 8 keeps it near 1.4 M arcs)
@@ -273,6 +273,33 @@ class _Search:
 
     def label(self, path) -> str:
         return "-".join(self.names[k] for k in path)
+
+    def _setup_clock(self, every_s: float | None = None):
+        """``LegCosts.build``'s chunk callback: the fraction done every ``every_s``, a word
+        up front when the tables alone will outlast the time limit, and the limit itself
+        (:class:`_OutOfTime`)."""
+        every_s = SETUP_PROGRESS_S if every_s is None else every_s
+        started = last = time.perf_counter()
+        warned = False
+
+        def on_chunk(done: int, total: int) -> None:
+            nonlocal last, warned
+            now = time.perf_counter()
+            if now >= self.deadline and done < total:
+                raise _OutOfTime(f"time limit reached while building the edge cost tables "
+                                 f"({done} of {total} edges in {now - started:.0f} s)")  # fmt: skip
+            need = (now - started) * total / max(done, 1)
+            if not warned and done < total and started + need > self.deadline:
+                warned = True
+                self.say(f"  the edge cost tables alone need about {need:.0f} s, beyond the "
+                         f"time limit ({self.deadline - started:.0f} s left): the search will "
+                         "stop without a plan; raise the time limit")  # fmt: skip
+            if now - last >= every_s and done < total:
+                last, spent = now, now - started
+                self.say(f"  cost tables: {done / total:.0%} done ({done} of {total} edges, "
+                         f"{spent:.0f} s, about {need - spent:.0f} s left)")  # fmt: skip
+
+        return on_chunk
 
     def node_cost(self, path) -> float:
         return float(np.sum(self.nodes.cost_mps[list(path)]))
@@ -335,6 +362,14 @@ class _Search:
         return "optimal" if _within(self.upper, self.proven, gap_rel) else "feasible"
 
 
+class _OutOfTime(Exception):
+    """The time limit ran out during the setup, before any plan."""
+
+
+SETUP_PROGRESS_S = 5.0
+"""Seconds between two progress lines of the edge cost tables."""
+
+
 def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             solver: SolverOptions | None = None, gap_rel: float = DEFAULT_GAP_REL,
             time_limit_s: float | None = None, seeds=(),
@@ -383,9 +418,13 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     solver = SolverOptions() if solver is None else solver
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     stop = stop or (lambda: False)
-    search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
-                     say=progress or (lambda line: None), initial_cells=initial_cells,
-                     names=names, path_tol_rel=gap_rel / 2)  # fmt: skip
+    try:
+        search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
+                         say=progress or (lambda line: None), initial_cells=initial_cells,
+                         names=names, path_tol_rel=gap_rel / 2)  # fmt: skip
+    except _OutOfTime as err:
+        return CertifiedResult((), None, np.inf, -np.inf, "no_plan", [], 0, 0,
+                               time.perf_counter() - clock, (str(err),))  # fmt: skip
     for seed in seeds:
         if len(seed) == nodes.legs + 1:
             search.try_path(seed, "seed")
