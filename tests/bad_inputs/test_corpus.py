@@ -203,6 +203,16 @@ CASES: dict[str, Case] = {
     "toml-injection-raan-1e308": scenario_case(
         "n = 2\ninjection = [7000.0, 0.001, 98.0, 1e308]", "injection raan_deg must be an angle in"
     ),
+    "csv-as-a-scenario": Case(
+        {"debris.csv": GOOD_CSV},
+        ["run", "{in}/debris.csv"],
+        ["invalid TOML", "looks like a debris catalog", "--catalog"],
+    ),
+    "tle-as-a-scenario": Case(
+        {"rb.dat": TLE_1 + TLE_2},
+        ["run", "{in}/rb.dat"],
+        ["invalid TOML", "looks like a debris catalog", "--catalog"],
+    ),
     "toml-catalog-missing": Case(
         {"scenario.toml": '[catalog]\npath = "nowhere.csv"\n'},
         ["run", "{in}/scenario.toml"],
