@@ -47,6 +47,13 @@ from ..solution import Solution
 
 RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
 """A folder holding one of these is an earlier run folder, which ``write_run`` replaces."""
+FIGURE_NAMES = ("orbits", "raan", "cost", "iterations")
+RUN_FOLDER_FILES = frozenset(
+    {"solution.json", "run.log", "legs.csv", "iterations.csv", "edges.csv", "scenario.toml"}
+    | {f"{name}.{ext}" for name in FIGURE_NAMES for ext in ("png", "svg", "pdf")}
+)
+"""Every file a run folder may hold: an earlier run folder with any other file in it (a
+file of the user's) is refused, not replaced with it."""
 LIVE_LOG_SIGNATURE = "# sdc_cvx live run log: it moves into the run folder as run.log at the end"
 """First line of a live log: a ``NAME.log`` without it is the user's and never touched."""
 CSV_FLOAT_FORMAT = "%.10g"
@@ -136,6 +143,15 @@ def out_folder_problem(folder: Path | str) -> str | None:
                 f"{folder} is not empty and is not an earlier run folder (no "
                 f"{', '.join(RUN_FOLDER_MARKERS)}); choose a new or empty folder (an earlier "
                 "run folder is replaced whole)"
+            )
+        foreign = sorted(p.name for p in folder.iterdir() if p.name not in RUN_FOLDER_FILES)
+        if foreign:
+            more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
+            shown = ", ".join(foreign[:5]) + more
+            return (
+                f"{folder} is an earlier run folder but also holds {shown}, which sdc_cvx "
+                "did not write; replacing the folder would delete them: move them out or "
+                "choose another folder"
             )
         if not os.access(folder.parent, os.W_OK | os.X_OK):
             return f"cannot replace {folder}: {folder.parent} is not writable"

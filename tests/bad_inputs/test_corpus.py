@@ -256,6 +256,12 @@ CASES: dict[str, Case] = {
         ["not an earlier run folder"],
         names="mine",
     ),
+    "out-run-folder-with-a-file-of-the-user": Case(
+        {"debris.csv": GOOD_CSV, "run/solution.json": "{}", "run/notes.txt": "keep"},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "{in}/run"],
+        ["also holds notes.txt", "did not write"],
+        names="run",
+    ),
     "out-unwritable": Case(
         {"debris.csv": GOOD_CSV, "locked/.keep": ""},
         ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "{in}/locked/run"],

@@ -347,3 +347,18 @@ def test_a_second_run_into_a_busy_folder_is_refused_and_a_kill_is_cleaned_at_the
         time.sleep(0.05)
     assert not any(p.exists() for p in left)  # gone as the next run started
     assert third.wait(timeout=120) == 0 and whole(out) and not live.exists()
+
+
+def test_an_earlier_run_folder_holding_a_file_of_the_user_is_refused(solution, tmp_path):
+    from sdc_cvx.report.plots import FIGURE_NAMES, SUPPORTED_FORMATS
+    from sdc_cvx.report.run_folder import RUN_FOLDER_FILES
+
+    # every file a run folder holds is known (else a rerun would refuse its own folder)
+    assert {f"{n}.{f}" for n in FIGURE_NAMES for f in SUPPORTED_FORMATS} <= RUN_FOLDER_FILES
+    folder = tmp_path / "run"
+    solution.save(folder, formats=("png", "svg", "pdf"), scenario_toml="")
+    assert {p.name for p in folder.iterdir()} <= RUN_FOLDER_FILES
+    (folder / "notes.txt").write_text("mine")
+    with pytest.raises(FileExistsError, match="also holds notes.txt, which sdc_cvx did not"):
+        solution.save(folder, formats=())
+    assert (folder / "notes.txt").read_text() == "mine"
