@@ -55,11 +55,21 @@ def _executor(executor, scheduler, workers, pending: int) -> Iterator[cf.Executo
     )
     try:
         yield pool
-    except BaseException:
+    except BaseException as err:
+        if not isinstance(err, Exception):  # Ctrl-C, exit: the running scenarios end too,
+            _terminate(pool)  # or the interpreter's exit would wait for them to finish
         pool.shutdown(wait=False, cancel_futures=True)
         raise
     else:
         pool.shutdown(wait=True)
+
+
+def _terminate(pool: cf.ProcessPoolExecutor) -> None:
+    """End the pool's worker processes now (what they were computing is lost: a resumed
+    sweep runs those scenarios again)."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        with contextlib.suppress(Exception):
+            process.terminate()
 
 
 _THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")

@@ -351,3 +351,25 @@ def test_the_study_copied_into_the_folder_resumes_that_sweep(tmp_path, monkeypat
     assert ran and all(p.row is None and p.remaining == 0 for p in ran)  # nothing run again
     assert '# base = "base.toml"' in (out / "study.toml").read_text()  # the original, kept
     assert not (out / ".sweep.lock").exists()
+
+
+@pytest.mark.slow
+def test_ctrl_c_on_a_sweep_says_how_to_resume_and_ends_at_once(tmp_path):
+    (tmp_path / "study.toml").write_text('[grid]\n"mission.n" = [3, 9]\n')  # n = 9: minutes
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    sweep = subprocess.Popen(
+        [sys.executable, "-m", "sdc_cvx", "sweep", "study.toml", "--out", "out", "--workers", "1"],
+        cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        start_new_session=True,
+    )  # fmt: skip
+    results = tmp_path / "out" / "results.csv"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and sweep.poll() is None:
+        if results.exists() and "n=3" in results.read_text():
+            break
+        time.sleep(0.2)
+    os.killpg(sweep.pid, signal.SIGINT)  # a terminal's Ctrl-C reaches the whole group
+    _, stderr = sweep.communicate(timeout=60)  # not after the n = 9 solve
+    assert sweep.returncode == 130
+    assert "finish the others with: python -m sdc_cvx sweep study.toml --resume --out out" in stderr
+    assert "Traceback" not in stderr and not (tmp_path / "out" / ".sweep.lock").exists()
