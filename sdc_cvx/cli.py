@@ -281,6 +281,7 @@ class RunProgress:
         self.show, self.heartbeat_s, self._time = show, heartbeat_s, time.monotonic
         self.live_log = live_log
         self._made = list(made or [])
+        self.log_failed = ""  # why the live log could not be written any more
         self._file = stream
         if live_log is not None and stream is None:
             live_log.parent.mkdir(parents=True, exist_ok=True)
@@ -310,7 +311,7 @@ class RunProgress:
         if self.live_log is not None:
             self.live_log.unlink(missing_ok=True)
         if self._file is not None:
-            with self._lock:
+            with self._lock, contextlib.suppress(OSError):
                 self._file.close()
         remove_empty(self._made)  # the folders made for --out, unless the run folder is there
 
@@ -320,8 +321,11 @@ class RunProgress:
         with self._lock:
             stamp = datetime.now(UTC).strftime("%H:%M:%S")
             self.lines.append(f"{stamp} {line}")
-            if self._file is not None and not self._file.closed:
-                self._file.write(f"{stamp} {line}\n")
+            if self._file is not None and not self._file.closed and not self.log_failed:
+                try:
+                    self._file.write(f"{stamp} {line}\n")
+                except OSError as err:  # a full disk: the run goes on, the log says no more
+                    self.log_failed = f"{self.live_log}: {err.strerror or err}"
             self._last = self._time()
             if self.show and show:
                 click.echo(line, err=True)
@@ -737,6 +741,11 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
                             progress=show)  # fmt: skip
     except SweepError as err:
         fail(str(err))
+    except OSError as err:  # a full disk while writing results
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        fail(f"cannot write the sweep folder {folder}: {err.strerror or err}"
+             + (f" ({err.filename})" if err.filename else "")
+             + f"; finish later with --resume --out {folder}", code)  # fmt: skip
     except KeyboardInterrupt:
         fail(f"interrupted: the scenarios finished so far are in {folder}/results.csv; "
              f"finish the others with: python -m sdc_cvx sweep {study_file} --resume "

@@ -507,3 +507,22 @@ def test_the_heartbeat_reaches_the_live_log_when_stderr_is_quiet(tmp_path, capsy
     beats = [line for line in steps.log_text().splitlines() if " s: certified search" in line]
     assert beats and all("cost tables: 40% done" in line for line in beats)
     assert capsys.readouterr().err == ""  # quiet: nothing on the terminal
+
+
+def test_a_live_log_that_cannot_be_written_does_not_stop_the_run(tmp_path):
+    from sdc_cvx.cli import RunProgress
+
+    class Full:
+        closed = False
+
+        def write(self, text):
+            raise OSError(28, "No space left on device")
+
+        def close(self):
+            pass
+
+    with RunProgress(show=False, live_log=tmp_path / "x.log", stream=Full()) as steps:
+        steps.say("first")
+        steps.say("second")
+    assert "No space left on device" in steps.log_failed
+    assert [line.split(" ", 1)[1] for line in steps.lines] == ["first", "second"]
