@@ -258,6 +258,12 @@ def _check_main_guard() -> None:
     if name == "__main__" or name.endswith(".__main__"):
         return  # python -m package: workers do not import it again (multiprocessing.spawn)
     path, line = frame.f_code.co_filename, frame.f_lineno
+    script = frame.f_globals.get("__file__")
+    try:
+        if script is None or not os.path.samefile(script, path):
+            return  # a notebook cell or an interactive session: nothing for workers to import
+    except OSError:
+        return
     try:
         tree = ast.parse(Path(path).read_text(encoding="utf-8"))
     except (OSError, SyntaxError, ValueError):

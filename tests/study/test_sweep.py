@@ -373,3 +373,17 @@ def test_ctrl_c_on_a_sweep_says_how_to_resume_and_ends_at_once(tmp_path):
     assert sweep.returncode == 130
     assert "finish the others with: python -m sdc_cvx sweep study.toml --resume --out out" in stderr
     assert "Traceback" not in stderr and not (tmp_path / "out" / ".sweep.lock").exists()
+
+
+def test_a_notebook_cell_is_not_taken_for_a_script_without_a_guard(tmp_path):
+    """ipykernel runs a cell as top-level code of __main__ from a file it keeps on disk:
+    no worker imports it, so nothing to refuse (notebooks call sweep() at top level)."""
+    from sdc_cvx.study.runner import _check_main_guard
+
+    cell = tmp_path / "cell.py"
+    cell.write_text("_check_main_guard()\n")
+    code = compile(cell.read_text(), str(cell), "exec")
+    exec(code, {"__name__": "__main__", "_check_main_guard": _check_main_guard})  # no raise
+    with pytest.raises(SweepError, match="cell.py, line 1: the sweep is started"):
+        exec(code, {"__name__": "__main__", "__file__": str(cell),
+                    "_check_main_guard": _check_main_guard})  # fmt: skip
