@@ -538,6 +538,10 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
                   catalog=catalog, formats=("png", "svg") if svg else ("png",),
                   log=steps.log_text())  # fmt: skip
         steps.discard_live_log()
+    except KeyboardInterrupt:
+        steps.discard_live_log()
+        fail(f"interrupted while writing: nothing written to {folder} (an earlier run folder "
+             "there is kept whole)", INTERRUPTED)  # fmt: skip
     except OSError as err:
         steps.discard_live_log()  # nothing is kept beside the folder
         if out_dir is None and folder is not None:
