@@ -540,6 +540,9 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         steps.discard_live_log()
     except KeyboardInterrupt:
         steps.discard_live_log()
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_run_* folder, if still empty
         fail(f"interrupted while writing: nothing written to {folder} (an earlier run folder "
              "there is kept whole)", INTERRUPTED)  # fmt: skip
     except OSError as err:
