@@ -15,7 +15,9 @@ import os
 import sys
 import threading
 
-_LOCK = threading.RLock()
+_LOCK = threading.Lock()
+_STATE = {"depth": 0, "saved": None}
+"""How many backend runs are under way in this process, and the real descriptor 1."""
 
 
 def _flush_c_stdio() -> None:
@@ -36,31 +38,40 @@ def backend_stdout(verbose: bool = False):
 
     Notes
     -----
-    Process-wide (a file descriptor); a re-entrant lock keeps two threads from
-    interleaving their redirections.  Python's own ``sys.stdout`` is flushed before and
+    Process-wide (a file descriptor), and counted: the first of several threads solving
+    at once redirects (its ``verbose`` applies to all), the last one restores, so
+    parallel solves are not serialised (what another thread writes to descriptor 1
+    meanwhile is redirected too).  Python's ``sys.stdout`` is flushed before and
     the C library's buffers before the descriptor is restored, so nothing written
     outside the block is lost or moved and nothing written inside leaks after it.
     """
     with _LOCK:
-        try:
-            saved = os.dup(1)
-        except OSError:  # no descriptor 1 (a closed stdout): nothing to protect
-            yield
-            return
-        try:
-            with contextlib.suppress(Exception):
-                sys.stdout.flush()
-            _flush_c_stdio()
-            if verbose:
-                os.dup2(2, 1)
-            else:
-                devnull = os.open(os.devnull, os.O_WRONLY)
-                try:
-                    os.dup2(devnull, 1)
-                finally:
-                    os.close(devnull)
-            yield
-        finally:
-            _flush_c_stdio()
-            os.dup2(saved, 1)
-            os.close(saved)
+        if _STATE["depth"] == 0:
+            try:
+                saved = os.dup(1)
+            except OSError:  # no descriptor 1 (a closed stdout): nothing to protect
+                saved = None
+            if saved is not None:
+                with contextlib.suppress(Exception):
+                    sys.stdout.flush()
+                _flush_c_stdio()
+                if verbose:
+                    os.dup2(2, 1)
+                else:
+                    devnull = os.open(os.devnull, os.O_WRONLY)
+                    try:
+                        os.dup2(devnull, 1)
+                    finally:
+                        os.close(devnull)
+            _STATE["saved"] = saved
+        _STATE["depth"] += 1
+    try:
+        yield
+    finally:
+        with _LOCK:
+            _STATE["depth"] -= 1
+            if _STATE["depth"] == 0 and _STATE["saved"] is not None:
+                _flush_c_stdio()
+                os.dup2(_STATE["saved"], 1)
+                os.close(_STATE["saved"])
+                _STATE["saved"] = None

@@ -42,3 +42,20 @@ def test_verbose_sends_the_backend_output_to_stderr():
     result = run(verbose=True)
     assert result.stdout == "before\nafter\n"
     assert bare.stdout.strip() in result.stderr
+
+
+def test_nested_and_parallel_runs_restore_stdout_only_when_the_last_one_ends():
+    from sdc_cvx.milp.output import backend_stdout
+
+    def where() -> tuple[int, int]:
+        stat = os.fstat(1)
+        return stat.st_dev, stat.st_ino
+
+    null = os.stat(os.devnull)
+    before = where()
+    with backend_stdout():
+        assert where() == (null.st_dev, null.st_ino)
+        with backend_stdout():
+            pass
+        assert where() == (null.st_dev, null.st_ino)  # the outer run is still under way
+    assert where() == before
