@@ -294,7 +294,10 @@ class _Search:
                 self.say(f"  the edge cost tables alone need about {need:.0f} s, beyond the "
                          f"time limit ({self.deadline - started:.0f} s left): the search will "
                          "stop without a plan; raise the time limit")  # fmt: skip
-            if now - last >= every_s and done < total:
+            if done >= total:  # the heartbeat's phase moves on with this line
+                self.say(f"  cost tables done ({total} edges, {now - started:.0f} s); next: the "
+                         "first network of date cells, its path bounds, cheap paths")  # fmt: skip
+            elif now - last >= every_s:
                 last, spent = now, now - started
                 self.say(f"  cost tables: {done / total:.0%} done ({done} of {total} edges, "
                          f"{spent:.0f} s, about {need - spent:.0f} s left)")  # fmt: skip

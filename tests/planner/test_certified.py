@@ -77,6 +77,8 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
     on_chunk(2, 10**12)
     assert sum("the edge cost tables alone need about" in line for line in lines) == 1
     assert any(line.startswith("  cost tables: 0% done (2 of") for line in lines)
+    on_chunk(10**12, 10**12)  # done: the heartbeat's phase moves on to the network
+    assert lines[-1].startswith("  cost tables done (1000000000000 edges")
     clock.deadline = 0.0
     with pytest.raises(_OutOfTime, match="3 of 1000000000000 edges"):
         on_chunk(3, 10**12)
