@@ -2,7 +2,7 @@
 
 Commands: ``run [SCENARIO.toml]``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``,
 ``solvers``.  Exit codes: 0 success, 2 invalid input (nothing written), 3 infeasible
-mission, 4 solver failure.
+mission, 4 solver failure or a full disk, 130 interrupted (Ctrl-C) with nothing written.
 """
 
 from __future__ import annotations
