@@ -2,14 +2,18 @@
 
 Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``sweep STUDY.toml``,
 ``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``.  Exit codes: 0 success,
-2 invalid input (nothing written), 3 infeasible mission or campaign, 4 solver failure.
+2 invalid input (nothing written), 3 infeasible mission or campaign, 4 solver failure or a
+full disk, 130 interrupted (Ctrl-C) with nothing written.
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import importlib.metadata
 import importlib.util
 import sys
+import warnings
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -18,6 +22,7 @@ import click
 
 from .errors import (
     CatalogError,
+    IgnoredOptionWarning,
     InputError,
     MissionError,
     MissionInfeasible,
@@ -39,6 +44,7 @@ if TYPE_CHECKING:  # the commands import what they use: --help stays light
 INPUT_ERROR = 2
 INFEASIBLE = 3
 SOLVER_FAILED = 4
+INTERRUPTED = 130  # 128 + SIGINT, the shell's convention
 EXIT_CODES: dict[type[SdcError], int] = {
     InputError: INPUT_ERROR,  # CatalogError, MissionError, ScenarioError
     SweepError: INPUT_ERROR,
@@ -46,6 +52,8 @@ EXIT_CODES: dict[type[SdcError], int] = {
     SolverFailure: SOLVER_FAILED,
 }
 """Exit code of each family of :mod:`sdc_cvx.errors` (0 is success)."""
+SYSTEM_ERRNOS = {errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EROFS}
+"""Write failures of the machine, not of the input (a full disk): exit 4, not 2."""
 MAX_DROPPED_SHOWN = 20
 
 
@@ -279,6 +287,13 @@ def iteration_line(record) -> str:
     ).rstrip()
 
 
+def remove_empty(folders: list[Path]) -> None:
+    """Remove ``folders`` (innermost first) that are empty; leave the others."""
+    for folder in folders:
+        with contextlib.suppress(OSError):
+            folder.rmdir()
+
+
 class RunProgress:
     """The progress of a run: to stderr when asked (a terminal), and always to ``run.log``.
 
@@ -290,14 +305,17 @@ class RunProgress:
     file as it is said, so that a killed run leaves its progress behind.
     """
 
-    def __init__(self, show: bool, heartbeat_s: float = 5.0, live_log: Path | None = None):
+    def __init__(self, show: bool, heartbeat_s: float = 5.0, live_log: Path | None = None,
+                 stream=None, made: list[Path] | None = None):  # fmt: skip
         import threading
         import time
 
         self.show, self.heartbeat_s, self._time = show, heartbeat_s, time.monotonic
         self.live_log = live_log
-        self._file = None
-        if live_log is not None:
+        self._made = list(made or [])
+        self.log_failed = ""  # why the live log could not be written any more
+        self._file = stream
+        if live_log is not None and stream is None:
             live_log.parent.mkdir(parents=True, exist_ok=True)
             self._file = open(live_log, "w", encoding="utf-8", buffering=1)  # noqa: SIM115
         self.lines: list[str] = []
@@ -309,21 +327,25 @@ class RunProgress:
         self._thread = threading.Thread(target=self._beat, daemon=True)
 
     def __enter__(self):
-        if self.show:
+        if self.show or self._file is not None:  # the heartbeat goes to the live log too
             self._thread.start()
         return self
 
     def __exit__(self, *exc):
+        """Stop the heartbeat; the live log stays open (and locked) until discarded."""
         self._stop.set()
         if self._thread.is_alive():
             self._thread.join()
-        if self._file is not None:
-            self._file.close()
 
     def discard_live_log(self) -> None:
-        """The run folder now holds ``run.log``: remove the live copy beside it."""
+        """The run folder now holds ``run.log`` (or nothing is kept): remove the live copy
+        beside it, then release it (removed while locked: no other run's log is hit)."""
         if self.live_log is not None:
             self.live_log.unlink(missing_ok=True)
+        if self._file is not None:
+            with self._lock, contextlib.suppress(OSError):
+                self._file.close()
+        remove_empty(self._made)  # the folders made for --out, unless the run folder is there
 
     def say(self, line: str, *, show: bool = True) -> None:
         from datetime import UTC, datetime
@@ -331,8 +353,11 @@ class RunProgress:
         with self._lock:
             stamp = datetime.now(UTC).strftime("%H:%M:%S")
             self.lines.append(f"{stamp} {line}")
-            if self._file is not None and not self._file.closed:
-                self._file.write(f"{stamp} {line}\n")
+            if self._file is not None and not self._file.closed and not self.log_failed:
+                try:
+                    self._file.write(f"{stamp} {line}\n")
+                except OSError as err:  # a full disk: the run goes on, the log says no more
+                    self.log_failed = f"{self.live_log}: {err.strerror or err}"
             self._last = self._time()
             if self.show and show:
                 click.echo(line, err=True)
@@ -366,7 +391,7 @@ class RunProgress:
         while not self._stop.wait(min(1.0, self.heartbeat_s)):
             now = self._time()
             if now - self._last >= self.heartbeat_s:
-                self.say(f"  ... {now - self.started:5.0f} s: {self.phase}")
+                self.say(f"  ... {now - self.started:5.0f} s: {self.phase}", show=self.show)
 
 
 @main.command()
@@ -425,6 +450,8 @@ class RunProgress:
     help="Write the solution JSON to stdout (and nothing else there).",
 )
 @click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
+@click.option("--verbose", is_flag=True, default=None,
+              help="Show the MILP backend's own log (on stderr).")  # fmt: skip
 @click.option(
     "--progress/--no-progress",
     default=None,
@@ -435,7 +462,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         max_eccentricity, ids, exclude_ids, names, types, strict, n, tmax_days, deorbit_days,
         preopt_days, dv_max_mps,
         min_transfer_days, backend, method, gap, time_limit_s, mip_gap, threads, fallback,
-        out_dir, quiet, json_out, svg, progress):  # fmt: skip
+        out_dir, quiet, json_out, svg, verbose, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
     SCENARIO.toml (optional; default the paper's case) gives the catalog, mission,
@@ -457,7 +484,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         catalog_start=start, n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
         preopt_days=preopt_days, dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days,
         backend=backend, method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
-        threads=threads,
+        threads=threads, verbose=verbose or None,
         fallback=tuple(fallback) or None,
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
                               names, types, strict),
@@ -475,7 +502,7 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
 
     catalog, _ = select_candidates(catalog, scenario, info)
     try:
-        mission.check_candidates(catalog.ids)
+        mission.check_candidates(catalog)
     except MissionError as err:
         where = f"{scenario.source}: " if scenario.source is not None else ""
         problems = "; ".join(f"mission.{problem}" for problem in str(err).split("; "))
@@ -486,19 +513,29 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
     header = run_header(catalog, mission, solver)
     info(header)
     # the progress goes to OUT.log beside the run folder while the run lasts (a killed run
-    # leaves it there), then into the folder as run.log
-    live_log = Path(out_dir).with_name(Path(out_dir).name + ".log") if out_dir else None
-    with RunProgress(show_progress, live_log=live_log) as steps:
+    # leaves it there, the next run into OUT replaces it), then into the folder as run.log;
+    # it also locks OUT against a second run at once
+    live_log, stream, made = open_progress_log(out_dir)
+    with RunProgress(show_progress, live_log=live_log, stream=stream, made=made) as steps:
         steps.say(header, show=False)
         steps.set_phase(
             "certified search: leg costs of every pair, cheap paths, then the first relaxation"
             if solver.method == "certified"
             else "seeding: re-optimising cheap paths, then building the first MILP"
         )
+        from .planner.api import ignored_options
+
+        for message in ignored_options(mission, solver):  # said once, up front
+            click.echo(f"warning: {message}", err=True)
+            steps.say(f"warning: {message}", show=False)
         try:
-            solution = solve(
-                catalog, mission, solver=solver, progress=steps.iteration, log=steps.search_step
-            )
+            with warnings.catch_warnings(), interruptible(steps, solver.method) as stop:
+                warnings.simplefilter("ignore", IgnoredOptionWarning)
+                solution = solve(catalog, mission, solver=solver, progress=steps.iteration,
+                                 log=steps.search_step, stop=stop)  # fmt: skip
+        except KeyboardInterrupt:
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            fail(f"interrupted: nothing written{kept}", INTERRUPTED)
         except MissionInfeasible as err:
             steps.discard_live_log()  # a proven answer: the message says it all
             fail(f"infeasible mission: {err}", exit_code(err))
@@ -515,8 +552,23 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
                   catalog=catalog, formats=("png", "svg") if svg else ("png",),
                   log=steps.log_text())  # fmt: skip
         steps.discard_live_log()
+    except KeyboardInterrupt:
+        steps.discard_live_log()
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_run_* folder, if still empty
+        fail(f"interrupted while writing: nothing written to {folder} (an earlier run folder "
+             "there is kept whole)", INTERRUPTED)  # fmt: skip
     except OSError as err:
-        fail(f"cannot write the run folder {folder or '.'}: {err.strerror or err}")
+        steps.discard_live_log()  # nothing is kept beside the folder
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_run_* folder, if still empty
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        message = err.strerror or str(err)
+        if not message.startswith("cannot write"):
+            message = f"cannot write the run folder {folder or '.'}: {message}"
+        fail(message, code)
     start = None  # the mission start date the RAANs refer to (Catalog.start)
     if catalog.start is not None:
         start = f"start     {catalog.start.isoformat()} (the catalog's RAANs are at this date)"
@@ -533,6 +585,63 @@ def run(scenario_file, catalog_path, catalog_format, start, altitude_km, inclina
         click.echo(f"results   {folder}/solution.json")
     if not solution.status.is_solved or solution.status in unsettled:
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
+
+
+def open_progress_log(out_dir):
+    """``(live_log, stream, made)``: the progress log beside ``--out`` while a run lasts.
+
+    ``OUT.log`` beside the folder (a killed run leaves it there, the next run into OUT
+    replaces it), locked, so a second run into OUT at once is refused; the hidden stages a
+    killed run left are removed now that OUT is ours.  ``made``: the folders above
+    ``--out`` created for it (removed if unused).  Without ``--out``: no log.  Exit 2
+    when OUT is busy, the log is a file of the user's, or it cannot be written.
+    """
+    from .report.run_folder import live_log_path, open_live_log, remove_stale_stages
+
+    if out_dir is None:
+        return None, None, []
+    live_log = live_log_path(out_dir)
+    made = [p for p in (live_log.parent, *live_log.parent.parents) if not p.exists()]
+    try:
+        live_log.parent.mkdir(parents=True, exist_ok=True)
+        stream = open_live_log(out_dir)
+        remove_stale_stages(out_dir)
+    except OSError as err:  # FileExistsError: another run is writing OUT, a user's file
+        remove_empty(made)
+        if isinstance(err, FileExistsError):
+            fail(f"--out: {err}")
+        fail(f"--out: cannot write the progress log {live_log}: {err.strerror or err}")
+    return live_log, stream, made
+
+
+@contextlib.contextmanager
+def interruptible(steps: RunProgress, method: str):
+    """Ctrl-C during a solve: the certified search stops at its next step with the best
+    plan so far (a second Ctrl-C, or the paper's method, stops at once: nothing written).
+
+    Yields the ``stop`` callable of :func:`sdc_cvx.planner.api.solve`.
+    """
+    import signal
+    import threading
+
+    asked = threading.Event()
+
+    def on_sigint(signum, frame):
+        if asked.is_set() or method != "certified":
+            raise KeyboardInterrupt
+        asked.set()
+        steps.say("interrupted: stopping at the next step with the best plan so far and its "
+                  "gap (Ctrl-C again to stop at once, writing nothing)")  # fmt: skip
+
+    try:
+        previous = signal.signal(signal.SIGINT, on_sigint)
+    except ValueError:  # not the main thread: Ctrl-C keeps its usual meaning
+        yield asked.is_set
+        return
+    try:
+        yield asked.is_set
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def run_header(catalog: Catalog, mission, solver) -> str:
@@ -710,7 +819,7 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     """
     from .report.run_folder import new_run_folder
     from .study.results import SOLVED_STATUSES
-    from .study.runner import run_study
+    from .study.runner import run_study, sweep_folder_problem
     from .study.study import load_study
 
     if resume and out_dir is None:
@@ -729,6 +838,9 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
         if (out / "results.csv").exists() and not resume:
             fail(f"--out: {out} already holds results.csv: add --resume to finish that "
                  "sweep, or choose a new folder")  # fmt: skip
+        problem = sweep_folder_problem(out)
+        if problem is not None:
+            fail(f"--out: {problem}")
     folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
     show = sys.stderr.isatty() if progress is None else progress
     try:
@@ -736,6 +848,15 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
                             progress=show)  # fmt: skip
     except SweepError as err:
         fail(str(err))
+    except OSError as err:  # a full disk while writing results
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        fail(f"cannot write the sweep folder {folder}: {err.strerror or err}"
+             + (f" ({err.filename})" if err.filename else "")
+             + f"; finish later with --resume --out {folder}", code)  # fmt: skip
+    except KeyboardInterrupt:
+        fail(f"interrupted: the scenarios finished so far are in {folder}/results.csv; "
+             f"finish the others with: python -m sdc_cvx sweep {study_file} --resume "
+             f"--out {folder}", INTERRUPTED)  # fmt: skip
     done = results["status"].isin(SOLVED_STATUSES)
     click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
                f"{folder}/results.csv")  # fmt: skip
@@ -808,7 +929,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
 
     catalog, _ = select_candidates(catalog, scenario, info)
     try:
-        campaign.check_candidates(catalog.ids)
+        campaign.check_candidates(catalog)
     except MissionError as err:
         fail(f"{scenario_file}: campaign: {err} (catalog: {catalog.source})")
     check_backend(scenario.solver)
@@ -820,10 +941,10 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     )
     info(header)
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
-    live_log = Path(out_dir).with_name(Path(out_dir).name + ".log") if out_dir else None
+    live_log, stream, made = open_progress_log(out_dir)
     folder = Path(out_dir) if out_dir else None
     start_utc = None if catalog.start is None else catalog.start.isoformat()
-    with RunProgress(show_progress, live_log=live_log) as steps:
+    with RunProgress(show_progress, live_log=live_log, stream=stream, made=made) as steps:
         steps.say(header, show=False)
         steps.set_phase("campaign: each launch alone, then the greedy campaign")
         try:
@@ -842,6 +963,9 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
             except OSError as write_err:
                 click.echo(f"warning: cannot write {folder}: {write_err}", err=True)
             fail(f"infeasible campaign: {err} ({folder}/campaign.json)", exit_code(err))
+        except KeyboardInterrupt:
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            fail(f"interrupted: nothing written{kept}", INTERRUPTED)
         except (SolverFailure, SweepError) as err:
             kept = f" (progress in {live_log})" if live_log is not None else ""
             fail(f"solver failure: {err}{kept}", exit_code(err))
@@ -852,8 +976,18 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         solution.save(folder, formats=("png", "svg") if svg else ("png",),
                       scenario_toml=scenario.to_toml(), log=steps.log_text())  # fmt: skip
         steps.discard_live_log()
-    except OSError as err:
-        fail(f"cannot write the campaign folder {folder or '.'}: {err.strerror or err}")
+    except (OSError, KeyboardInterrupt) as err:
+        steps.discard_live_log()
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_campaign_* folder, if still empty
+        if isinstance(err, KeyboardInterrupt):
+            fail(f"interrupted while writing: nothing written to {folder}", INTERRUPTED)
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        message = err.strerror or str(err)
+        if not message.startswith("cannot write"):
+            message = f"cannot write the campaign folder {folder or '.'}: {message}"
+        fail(message, code)
     lines = [solution.summary()]
     if start_utc:
         lines.append(f"start     {start_utc} (day 0 of the launch days)")

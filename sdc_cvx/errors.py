@@ -86,6 +86,11 @@ class CatalogWarning(UserWarning):
     """A catalog was read, but something in it is likely a mistake (an unknown column)."""
 
 
+class IgnoredOptionWarning(UserWarning):
+    """An option was set that the chosen method does not use (``dv_max_mps`` with the
+    certified search, ``gap`` with the paper's method): said, not silently dropped."""
+
+
 class PlanningError(SdcError, RuntimeError):
     """Valid inputs, but no plan: the mission is infeasible or the solver failed."""
 

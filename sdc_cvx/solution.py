@@ -35,13 +35,14 @@ class RunStatus(StrEnum):
     status returned a plan.
     """
 
-    OPTIMAL = "optimal"  # certified: the plan is within the requested gap of a proven bound
+    OPTIMAL = "optimal"  # certified: within OPTIMAL_GAP_REL (or 0.01 m/s) of a proven bound
     FEASIBLE = "feasible"  # a plan, with its gap to a proven bound; a limit stopped the search
     CONVERGED = "converged"  # the path survived a MILP around its re-optimised point
     CONVERGED_UNCONFIRMED = "converged_unconfirmed"  # kept changing after max_confirmations
     ITERATION_LIMIT = "iteration_limit"
     TIME_LIMIT = "time_limit"  # a MILP stopped at its time limit without a solution
     STALLED = "stalled"  # the next MILP would repeat an earlier one: nothing left to change
+    WITHIN_GAP = "within_gap"  # certified: within a requested gap wider than OPTIMAL_GAP_REL
 
     @property
     def is_solved(self) -> bool:
@@ -49,9 +50,16 @@ class RunStatus(StrEnum):
         return self in _SOLVED
 
 
+OPTIMAL_GAP_REL = 1e-3
+"""Widest relative gap called ``optimal`` (0.1 %); a gap of at most
+:data:`OPTIMAL_GAP_MPS` is optimal whatever the plan's size."""
+OPTIMAL_GAP_MPS = 0.01
+"""Absolute gap always called ``optimal`` [m/s] (the certified search's path tolerance)."""
+
 _SOLVED = frozenset(
     {
         RunStatus.OPTIMAL,
+        RunStatus.WITHIN_GAP,
         RunStatus.FEASIBLE,
         RunStatus.CONVERGED,
         RunStatus.CONVERGED_UNCONFIRMED,
@@ -99,6 +107,7 @@ class IterationRecord:
     status: str
     note: str = ""
     rejected: str = ""  # why the driver rejected this step ("" if it was not)
+    elapsed_s: float | None = None  # certified search: seconds from its start to this bound
 
     def to_dict(self) -> dict:
         out = asdict(self)
@@ -119,7 +128,10 @@ class Solution:
     ``method`` is ``"certified"`` or ``"paper"``.  A certified answer carries
     ``lower_bound_mps``: no plan of the mission costs less, so the plan is at most
     ``gap_mps`` (``gap_rel`` of it) above the optimum; ``status`` is then ``optimal``
-    (within the requested gap) or ``feasible`` (a limit stopped the search first).  The
+    (within 0.1 % or 0.01 m/s, :data:`OPTIMAL_GAP_REL`), ``within_gap`` (within a wider
+    gap the user asked for, ``gap_requested``) or ``feasible`` (a limit or an interrupt
+    stopped the search first); ``search_trace`` is how the bound and the best plan
+    moved: ``(seconds, bound, plan)`` at each change, None where there was none yet.  The
     paper's method proves no bound (``lower_bound_mps`` is None); its
     ``status``: ``converged`` (the path survived a MILP
     around its re-optimised point), ``converged_unconfirmed`` (it kept changing after
@@ -145,11 +157,13 @@ class Solution:
     notes: tuple[str, ...] = ()
     method: str = "paper"
     lower_bound_mps: float | None = None
+    gap_requested: float | None = None
+    search_trace: tuple[tuple[float, float | None, float | None], ...] = ()
 
     @property
     def certified(self) -> bool:
         """True when the plan is proven within the requested gap of the optimum."""
-        return self.status == RunStatus.OPTIMAL
+        return self.status in (RunStatus.OPTIMAL, RunStatus.WITHIN_GAP)
 
     @property
     def gap_mps(self) -> float | None:
@@ -173,6 +187,13 @@ class Solution:
         gap = f"gap {self.gap_mps:.2f} m/s, {100 * self.gap_rel:.2f} %"
         if self.status == RunStatus.OPTIMAL:
             return f"optimal ({gap}; lower bound {self.lower_bound_mps:.2f} m/s)"
+        if self.status == RunStatus.WITHIN_GAP:
+            asked = self.gap_requested
+            asked = "" if asked is None else f" (requested {100 * asked:g} %)"
+            return (
+                f"within {100 * self.gap_rel:.2f} % of the optimum{asked}: gap "
+                f"{self.gap_mps:.2f} m/s, lower bound {self.lower_bound_mps:.2f} m/s"
+            )
         why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
         return f"{self.status}, {gap} ({why}; lower bound {self.lower_bound_mps:.2f} m/s)"
 
@@ -206,6 +227,11 @@ class Solution:
             "lower_bound_mps": self.lower_bound_mps,
             "gap_mps": self.gap_mps,
             "gap_rel": self.gap_rel,
+            "gap_requested": self.gap_requested,
+            "search_trace": [
+                {"seconds": t, "lower_bound_mps": lower, "plan_mps": plan}
+                for t, lower, plan in self.search_trace
+            ],
             "backend": self.backend,
             "legs": [leg.to_dict() for leg in self.legs],
             "initial_legs": [leg.to_dict() for leg in self.initial_legs],

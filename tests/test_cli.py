@@ -2,6 +2,9 @@
 
 import importlib.metadata
 import json
+import os
+import subprocess
+import sys
 import time
 from datetime import UTC, datetime
 from pathlib import Path
@@ -15,7 +18,7 @@ from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.cli import main
 from sdc_cvx.inputs.formats import read_gtoc9
 from sdc_cvx.study.scenario import Selection, load
-from tests.conftest import EXAMPLES, PAPER_CSV, SHARED_DATA
+from tests.conftest import EXAMPLES, PAPER_CSV, REPO, SHARED_DATA
 
 GTOC9 = SHARED_DATA / "gtoc9" / "debris_data.txt"
 
@@ -438,3 +441,100 @@ def test_run_progress_and_run_log_say_which_steps_were_rejected(tmp_path):
     assert log.count("step rejected:") == len(rejected)
     assert "Choosing 5 of 11 debris from paper Table 5" in log and "total dV  2985.8" in log
     assert "status    converged: path from the seeding" in result.stdout
+
+
+def cli_process(*args: str, cwd=None, timeout: float = 300) -> subprocess.CompletedProcess:
+    """``python -m sdc_cvx ARGS`` in a real process, on this checkout (PYTHONPATH)."""
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    return subprocess.run([sys.executable, "-m", "sdc_cvx", *args], cwd=cwd or REPO, env=env,
+                          capture_output=True, text=True, timeout=timeout)  # fmt: skip
+
+
+@pytest.mark.slow
+def test_run_json_prints_json_only_through_a_real_process(tmp_path):
+    result = cli_process("run", "--n", "3", "--json", "--out", str(tmp_path / "out"))
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)  # no backend banner or progress line around it
+    assert data["path"] and data["total_dv_mps"] > 0
+    assert data == json.loads((tmp_path / "out" / "solution.json").read_text())
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_run_keeps_the_best_plan_with_its_gap(tmp_path):
+    import signal
+
+    out, live = tmp_path / "out", tmp_path / "out.log"
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    run = subprocess.Popen([sys.executable, "-m", "sdc_cvx", "run", "--n", "6", "--quiet",
+                            "--out", str(out)], cwd=REPO, env=env, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)  # fmt: skip
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and run.poll() is None:
+        if live.exists() and " plan " in live.read_text():  # a plan is held
+            break
+        time.sleep(0.05)
+    run.send_signal(signal.SIGINT)
+    stdout, stderr = run.communicate(timeout=300)
+    assert run.returncode == 0, stderr
+    data = json.loads((out / "solution.json").read_text())
+    assert data["status"] in ("feasible", "optimal") and data["lower_bound_mps"] is not None
+    if data["status"] == "feasible":  # stopped before the search ended: said so, with its gap
+        assert "interrupted: the best plan so far" in data["notes"]
+        assert "feasible, gap " in stdout and "interrupted" in stdout
+    assert not live.exists() and not list(tmp_path.glob(".*partial"))
+
+
+@pytest.mark.slow
+def test_a_full_disk_is_exit_4_and_leaves_nothing_beside_the_folder(tmp_path, monkeypatch):
+    import errno
+
+    from sdc_cvx.report import run_folder
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    csv = tmp_path / "d.csv"
+    csv.write_text("id,a_km,e,inc_deg,raan_deg\n1,7000,0.001,98,10\n2,7050,0.001,98,40\n")
+    monkeypatch.setattr(run_folder, "_swap_in", full)
+    out = tmp_path / "work" / "out"
+    result = CliRunner().invoke(main, ["run", "--catalog", str(csv), "--n", "2", "--quiet",
+                                       "--out", str(out)])  # fmt: skip
+    assert result.exit_code == 4, result.output
+    assert "cannot write the run folder" in result.stderr and "No space left" in result.stderr
+    assert "invalid input" not in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d.csv"]  # no out, out.log, stage
+
+
+def test_the_heartbeat_reaches_the_live_log_when_stderr_is_quiet(tmp_path, capsys):
+    """run.log gets the heartbeat too, not only a terminal (issue 20, item 9)."""
+    from sdc_cvx.cli import RunProgress
+    from sdc_cvx.report.run_folder import open_live_log
+
+    stream = open_live_log(tmp_path / "out")
+    with RunProgress(show=False, heartbeat_s=0.1, live_log=tmp_path / "out.log",
+                     stream=stream) as steps:  # fmt: skip
+        steps.search_step("  cost tables: 40% done (92352 of 230880 edges, 10 s)")
+        time.sleep(0.6)
+    steps.discard_live_log()
+    beats = [line for line in steps.log_text().splitlines() if " s: certified search" in line]
+    assert beats and all("cost tables: 40% done" in line for line in beats)
+    assert capsys.readouterr().err == ""  # quiet: nothing on the terminal
+
+
+def test_a_live_log_that_cannot_be_written_does_not_stop_the_run(tmp_path):
+    from sdc_cvx.cli import RunProgress
+
+    class Full:
+        closed = False
+
+        def write(self, text):
+            raise OSError(28, "No space left on device")
+
+        def close(self):
+            pass
+
+    with RunProgress(show=False, live_log=tmp_path / "x.log", stream=Full()) as steps:
+        steps.say("first")
+        steps.say("second")
+    assert "No space left on device" in steps.log_failed
+    assert [line.split(" ", 1)[1] for line in steps.lines] == ["first", "second"]

@@ -25,3 +25,59 @@ def test_a_status_is_its_string(status, text):
 
 def test_every_run_status_so_far_has_a_plan():
     assert all(status.is_solved for status in RunStatus)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("file.csv", None), r"catalog must be a Catalog, got str 'file.csv': read the file"),
+        ((None, {"n": 3}), r"mission must be a Mission, got dict .*Mission\(\*\*\{'n': 3\}\)"),
+    ],
+)
+def test_solve_names_an_argument_of_the_wrong_kind(args, message):
+    from sdc_cvx import solve
+
+    with pytest.raises(TypeError, match=message):
+        solve(*args)
+
+
+def test_an_option_the_method_does_not_use_is_said():
+    from sdc_cvx import Mission, SolverOptions
+    from sdc_cvx.planner.api import ignored_options
+
+    assert ignored_options(Mission(), SolverOptions()) == []
+    assert ignored_options(Mission(), SolverOptions(method="paper")) == []
+    (certified,) = ignored_options(Mission(dv_max_mps=500.0), SolverOptions())
+    assert certified.startswith("mission.dv_max_mps = 500 is ignored")
+    (paper,) = ignored_options(Mission(), SolverOptions(method="paper", gap=0.5))
+    assert paper.startswith("solver.gap = 0.5 is ignored")
+
+
+@pytest.mark.slow
+def test_solve_warns_and_notes_an_ignored_option():
+    from sdc_cvx import Catalog, Mission, solve
+    from sdc_cvx.errors import IgnoredOptionWarning
+
+    catalog = Catalog.paper_case().subset(["1", "2", "3"])
+    with pytest.warns(IgnoredOptionWarning, match="dv_max_mps = 500 is ignored"):
+        solution = solve(catalog, Mission(n=2, dv_max_mps=500.0))
+    assert any("dv_max_mps = 500 is ignored" in note for note in solution.notes)
+
+
+def test_a_wide_requested_gap_is_not_called_optimal():
+    """--gap 0.5 printed "optimal (8.11 %)" (issue 20, item 8): optimal is 0.1 % at most."""
+    from dataclasses import replace
+
+    from sdc_cvx import Catalog, Mission, SolverOptions, solve
+    from sdc_cvx.solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL
+
+    catalog = Catalog.paper_case().subset(["1", "2", "3", "4", "5"])
+    solution = solve(catalog, Mission(n=3), solver=SolverOptions(gap=0.5))
+    tight = solution.gap_mps <= max(OPTIMAL_GAP_REL * solution.total_dv_mps, OPTIMAL_GAP_MPS)
+    assert solution.status == (RunStatus.OPTIMAL if tight else RunStatus.WITHIN_GAP)
+    assert solution.certified and solution.gap_requested == 0.5
+    assert solution.to_dict()["gap_requested"] == 0.5
+    wide = replace(solution, status=RunStatus.WITHIN_GAP,
+                   lower_bound_mps=0.9189 * solution.total_dv_mps)  # fmt: skip
+    assert wide.quality().startswith("within 8.11 % of the optimum (requested 50 %): gap ")
+    assert "optimal" not in wide.summary().splitlines()[1]

@@ -52,8 +52,9 @@ class CampaignSolution:
     lower_bound_mps : float
         No campaign of these missions costs less [m/s].
     status : RunStatus
-        ``optimal`` (within the requested gap) or ``feasible`` (a limit stopped the
-        search; the gap says how far it may be).
+        ``optimal`` (within 0.1 %, or 0.01 m/s per mission), ``within_gap`` (within a
+        wider requested gap) or ``feasible`` (a limit stopped the search; the gap says
+        how far it may be).
     greedy : GreedyCampaign
     history : tuple of dict
         Each step: ``step``, ``seconds``, ``lower_mps``, ``upper_mps``, ``lp_mps``,
@@ -82,7 +83,7 @@ class CampaignSolution:
     @property
     def certified(self) -> bool:
         """True when the campaign is proven within the requested gap of the optimum."""
-        return self.status == RunStatus.OPTIMAL
+        return self.status in (RunStatus.OPTIMAL, RunStatus.WITHIN_GAP)
 
     @property
     def gap_mps(self) -> float:
@@ -108,6 +109,12 @@ class CampaignSolution:
         gap = f"gap {self.gap_mps:.2f} m/s, {100 * self.gap_rel:.2f} %"
         if self.status == RunStatus.OPTIMAL:
             return f"optimal ({gap}; lower bound {self.lower_bound_mps:.2f} m/s)"
+        if self.status == RunStatus.WITHIN_GAP:
+            return (
+                f"within {100 * self.gap_rel:.2f} % of the optimum (requested "
+                f"{100 * self.gap_requested:g} %): gap {self.gap_mps:.2f} m/s, lower bound "
+                f"{self.lower_bound_mps:.2f} m/s"
+            )
         why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
         return f"{self.status}, {gap} ({why}; lower bound {self.lower_bound_mps:.2f} m/s)"
 

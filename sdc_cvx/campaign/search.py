@@ -47,7 +47,7 @@ from ..milp.types import SolverOptions
 from ..network.edges import node_orbits
 from ..planner.api import solution_of
 from ..planner.sequential import MissionNodes
-from ..solution import RunStatus
+from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
 from ..study.executors import open_executor
 from .master import solve_ip, solve_lp
 from .pricing import Column, Launch, Pricing, price
@@ -374,7 +374,7 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     if not isinstance(campaign, Campaign):
         raise TypeError(f"campaign must be a Campaign, got {type(campaign).__name__}")
     solver = SolverOptions() if solver is None else solver
-    campaign.check_candidates(catalog.ids)
+    campaign.check_candidates(catalog)
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)
@@ -428,8 +428,18 @@ class _pricing_executor:
         return False
 
 
+def _status(search: _Campaign) -> RunStatus:
+    """``optimal`` within 0.1 % (or 0.01 m/s per mission), ``within_gap`` within a wider
+    requested gap, ``feasible`` when a limit stopped the search first."""
+    if not search.within():
+        return RunStatus.FEASIBLE
+    optimal = max(OPTIMAL_GAP_REL * search.upper, OPTIMAL_GAP_MPS * len(search.launches))
+    return RunStatus.OPTIMAL if search.upper - search.lower <= optimal * (1 + 1e-9) \
+        else RunStatus.WITHIN_GAP  # fmt: skip
+
+
 def _solution(search: _Campaign, greedy: GreedyCampaign, seconds: float) -> CampaignSolution:
-    status = RunStatus.OPTIMAL if search.within() else RunStatus.FEASIBLE
+    status = _status(search)
     missions = tuple(_mission_solution(search, column, status) for column in search.plan)
     greedy_paths = tuple(search.path_text(c) for c in greedy.missions)
     return CampaignSolution(

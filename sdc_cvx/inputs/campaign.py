@@ -164,18 +164,20 @@ class Campaign:
         """Debris removed by the whole campaign (the sum of the missions' n)."""
         return sum(m.n for m in self.missions)
 
-    def check_candidates(self, ids) -> None:
-        """Raise :class:`MissionError` if the campaign cannot fit the catalog's ``ids``.
+    def check_candidates(self, catalog) -> None:
+        """Raise :class:`MissionError` if the campaign cannot fit the catalog.
 
-        Each mission's own check, ``must_remove`` ids that exist and are not excluded
-        from every mission, and enough candidates for all the missions together.
+        Each mission's own check (``Mission.check_candidates``: ``catalog`` is the
+        :class:`~sdc_cvx.inputs.catalog.Catalog`, or its ids), ``must_remove`` ids that
+        exist and are not excluded from every mission, and enough candidates for all the
+        missions together.
         """
-        ids = [str(k) for k in ids]
+        ids = [str(k) for k in getattr(catalog, "ids", catalog)]
         known = set(ids)
         problems = []
         for k, mission in enumerate(self.missions, start=1):
             try:
-                mission.check_candidates(ids)
+                mission.check_candidates(catalog)
             except MissionError as err:
                 problems.append(f"mission {k} (launch day {self.launch_days[k - 1]:g}): {err}")
         unknown = [d for d in self.must_remove if d not in known]

@@ -685,11 +685,21 @@ def _check_inc(value: float) -> str | None:
     return None if 0.0 <= value <= 180.0 else "expected a number in [0, 180], got {got}"
 
 
+MAX_ABS_RAAN_DEG = 36_000.0
+"""Largest |RAAN| read [deg] (100 turns, wrapped into [0, 360)): beyond, a value is noise,
+not an angle (1e308 % 360 "is" 296 deg)."""
+
+
+def _check_raan(value: float) -> str | None:
+    ok = -MAX_ABS_RAAN_DEG <= value <= MAX_ABS_RAAN_DEG
+    return None if ok else "expected an angle in [-36000, 36000] deg (wrapped), got {got}"
+
+
 _CHECKS = {
     "a_km": _check_a,
     "e": _check_e,
     "inc_deg": _check_inc,
-    "raan_deg": lambda value: None,
+    "raan_deg": _check_raan,
 }
 
 

@@ -25,6 +25,12 @@ from ..physics.orbits import J2, R_EARTH
 DRIFT_INCLINATION_RULES = ("table3", "free")
 
 
+INJECTION_MIN_PERIGEE_KM = 150.0
+"""Lowest perigee altitude of an injection orbit [km], that of a catalog orbit
+(``inputs.catalog.MIN_PERIGEE_KM``; not imported: this module stays free of pandas)."""
+DRIFT_ALTITUDE_RANGE_KM = (150.0, 2000.0)
+"""Where a drift altitude band may lie [km]: from the lowest perigee of a catalog orbit
+to the top of LEO (the catalog's limits, README "Physical domain")."""
 MAX_TMAX_DAYS = 3652.5
 """The longest mission planned [days]: 10 years (beyond, drag and the debris' decay,
 which the model leaves out, change the orbits more than the drift does)."""
@@ -47,7 +53,8 @@ class Mission:
     min_transfer_days : float
         Minimum transfer duration T_min [days] (paper: 0 in Eq. 16).
     drift_altitude_km : tuple of float
-        Lower and upper altitude bounds of the drift orbits above R_T [km] (paper: 400-1200).
+        Lower and upper altitude bounds of the drift orbits above R_T [km] (paper: 400-1200),
+        within :data:`DRIFT_ALTITUDE_RANGE_KM` (150-2000 km).
     preopt_days : float
         Transfer duration bound T0 of the pre-optimisation [days] (paper: 2 months).
     dv_max_mps : float
@@ -67,7 +74,8 @@ class Mission:
     deorbit_perigee_km : float
         Target perigee altitude of a deorbited debris [km] (``deorbit_by="vehicle"``).
     must_include, exclude : tuple of str
-        Debris ids that must be visited / must not be.
+        Debris ids that must be visited / must not be (a single string is one id:
+        ``must_include="35"`` is ``("35",)``).
     first : str, optional
         Debris id fixed as the first of the path.
     injection : (a_km, e, inc_deg, raan_deg), optional
@@ -96,7 +104,10 @@ class Mission:
     def __post_init__(self):
         object.__setattr__(self, "drift_altitude_km", tuple(self.drift_altitude_km))
         for name in ("must_include", "exclude"):
-            object.__setattr__(self, name, tuple(str(k) for k in getattr(self, name)))
+            value = getattr(self, name)
+            if isinstance(value, str | numbers.Integral):  # one id, not its characters
+                value = (value,)
+            object.__setattr__(self, name, tuple(str(k) for k in value))
         if self.first is not None:
             object.__setattr__(self, "first", str(self.first))
         if self.injection is not None:
@@ -132,8 +143,17 @@ class Mission:
         bounds = self.drift_altitude_km
         if len(bounds) != 2:
             yield f"drift_altitude_km must be (low, high), got {bounds!r}"
+        elif not all(_is_real(b) for b in bounds):
+            yield f"drift_altitude_km must be two numbers (low, high), got {bounds!r}"
         elif not 0 < bounds[0] < bounds[1]:
             yield f"drift_altitude_km must satisfy 0 < low < high, got {bounds!r}"
+        elif not DRIFT_ALTITUDE_RANGE_KM[0] <= bounds[0] < bounds[1] <= DRIFT_ALTITUDE_RANGE_KM[1]:
+            low, high = DRIFT_ALTITUDE_RANGE_KM
+            yield (
+                f"drift_altitude_km must lie within [{low:g}, {high:g}] km, got {bounds!r}: "
+                f"below {low:g} km a drift orbit decays within days, above {high:g} km it "
+                "leaves LEO, where J2 drift takes centuries (the paper: 400-1200 km)"
+            )
         if self.drift_inclination not in DRIFT_INCLINATION_RULES:
             yield (
                 f"drift_inclination must be one of {DRIFT_INCLINATION_RULES}, "
@@ -153,8 +173,15 @@ class Mission:
 
         Checks that every id named by ``must_include``, ``exclude`` and ``first``
         exists, and that ``n`` debris remain once the excluded ones are removed.
-        ``ids`` may also be a count (then only ``n`` is checked).
+        ``ids`` may also be a count (then only ``n`` is checked), or the
+        :class:`~sdc_cvx.inputs.catalog.Catalog` itself: then, with
+        ``deorbit_by="vehicle"``, ``deorbit_perigee_km`` must also be below the perigee
+        of every candidate that is not excluded (lowering a perigee to above where it is
+        would be a negative ΔV).
         """
+        catalog = ids if hasattr(ids, "ids") and hasattr(ids, "a_m") else None
+        if catalog is not None:
+            ids = catalog.ids
         if isinstance(ids, numbers.Integral):
             ids = [f"#{k}" for k in range(ids)]
             if self.must_include or self.exclude or self.first:
@@ -172,8 +199,27 @@ class Mission:
         if self.n > available:
             excluded = f" ({len(ids) - available} excluded)" if self.exclude else ""
             problems.append(f"n = {self.n} exceeds the {available} candidate debris{excluded}")
+        if catalog is not None and self.deorbit_by == "vehicle":
+            problems += self._deorbit_problems(catalog)
         if problems:
             raise MissionError("; ".join(problems))
+
+    def _deorbit_problems(self, catalog) -> list[str]:
+        """``deorbit_perigee_km`` at or above a candidate's perigee (``deorbit_by="vehicle"``)."""
+        perigee_km = (catalog.a_m * (1.0 - catalog.e) - R_EARTH) / 1e3
+        excluded = set(self.exclude)
+        high = [(float(p), k) for k, p in zip(catalog.ids, perigee_km, strict=True)
+                if k not in excluded and not p > self.deorbit_perigee_km]  # fmt: skip
+        if not high:
+            return []
+        shown = ", ".join(f"{k} at {p:.1f} km" for p, k in sorted(high)[:5])
+        more = f" and {len(high) - 5} more" if len(high) > 5 else ""
+        return [
+            f"deorbit_perigee_km = {self.deorbit_perigee_km:g} is not below the perigee "
+            f"altitude of {len(high)} candidate debris ({shown}{more}): with deorbit_by = "
+            "'vehicle' each debris' perigee is lowered to deorbit_perigee_km, which must be "
+            "below every candidate's perigee (the usual value is 50 km), or exclude those debris"
+        ]
 
     def _option_problems(self):
         if self.deorbit_by not in ("kit", "vehicle"):
@@ -204,6 +250,17 @@ class Mission:
                     yield f"injection e must be in [0, 1), got {e!r}"
                 if not 0 <= inc <= 180:
                     yield f"injection inc_deg must be in [0, 180], got {inc!r}"
+                if not -36_000 <= self.injection[3] <= 36_000:  # 1e308 % 360 is noise
+                    yield (f"injection raan_deg must be an angle in [-36000, 36000] deg, "
+                           f"got {self.injection[3]!r}")  # fmt: skip
+                perigee = a_km * (1.0 - e) - R_EARTH / 1e3
+                if a_km > R_EARTH / 1e3 and 0 <= e < 1 and perigee < INJECTION_MIN_PERIGEE_KM:
+                    where = "below the Earth's surface" if perigee < 0 else "too low"
+                    yield (
+                        f"injection perigee altitude a_km * (1 - e) - {R_EARTH / 1e3:g} must be "
+                        f"at least {INJECTION_MIN_PERIGEE_KM:g} km, got {perigee:.1f} km "
+                        f"({where}, from a_km = {a_km:g} and e = {e:g})"
+                    )
 
     def requests(self) -> list[str]:
         """The options that narrow the search, as ``name = value`` text (for messages)."""

@@ -17,6 +17,7 @@ import numpy as np
 from cvxpy import settings as cvxpy_settings
 
 from .backends import RawContext, _installed
+from .output import backend_stdout
 from .types import BACKENDS, SolveReport, SolverOptions, Status
 
 CHECK_TOLERANCE = 1e-6
@@ -95,7 +96,7 @@ def solve_milp(problem: cp.Problem, options: SolverOptions, *, warm_start=False)
         return error(f"{type(err).__name__}: {err}", ignored=ignored)
     start = time.perf_counter()
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), backend_stdout(verbose):
             warnings.simplefilter("ignore")  # the status is read and reported below
             raw = chain.solve_via_data(problem, data, warm_start, verbose, copy.deepcopy(kwargs))
     except Exception as err:  # noqa: BLE001 - any backend failure (license, option, crash)

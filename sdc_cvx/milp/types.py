@@ -93,7 +93,13 @@ class SolverOptions:
         if not (isinstance(self.gap, int | float) and 0 <= self.gap < 1):
             raise ValueError(f"gap must be a number in [0, 1), got {self.gap!r}")
         object.__setattr__(self, "backend", self.backend.upper())
+        if isinstance(self.fallback, str):  # one backend, not its letters
+            object.__setattr__(self, "fallback", (self.fallback,))
         object.__setattr__(self, "fallback", tuple(str(b).upper() for b in self.fallback))
+        unknown = [b for b in self.fallback if b not in BACKENDS]
+        if unknown:
+            raise ValueError(f"fallback must name MILP backends, from {', '.join(BACKENDS)}; "
+                             f"got {', '.join(unknown)}")  # fmt: skip
         if self.time_limit_s is not None and not self.time_limit_s > 0:
             raise ValueError(f"time_limit_s must be > 0, got {self.time_limit_s!r}")
         if self.mip_gap is not None and not 0 <= self.mip_gap < 1:

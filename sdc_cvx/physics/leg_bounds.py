@@ -33,6 +33,7 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -81,8 +82,14 @@ class LegCosts:
 
     @classmethod
     def build(cls, origin: NodeOrbits, target: NodeOrbits, a_low: float, a_high: float, *,
-              mu: float = MU_EARTH, chunk: int = 2048) -> LegCosts:  # fmt: skip
-        """Scan every edge's cost over the band and keep its possible minimisers."""
+              mu: float = MU_EARTH, chunk: int = 2048,
+              on_chunk: Callable[[int, int], None] | None = None) -> LegCosts:  # fmt: skip
+        """Scan every edge's cost over the band and keep its possible minimisers.
+
+        ``on_chunk(done, total)`` is called after each ``chunk`` of edges (the longest
+        step of a large catalog's setup: a clock and a fraction done); it may raise to
+        stop the build.
+        """
         count = len(origin.a)
         candidates = np.full((count, 2, 2 + MAX_MINIMA), np.nan)
         for start in range(0, count, chunk):
@@ -90,6 +97,8 @@ class LegCosts:
             o, t = origin.take(rows), target.take(rows)
             for c, inc in enumerate((o.inc, t.inc)):
                 candidates[rows, c] = _possible_minimisers(o, t, inc, a_low, a_high, mu)
+            if on_chunk is not None:
+                on_chunk(rows.stop, count)
         self = cls(origin, target, float(a_low), float(a_high), candidates,
                    np.empty(0), mu)  # fmt: skip
         edges = np.arange(count)[:, None, None]

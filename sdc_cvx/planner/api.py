@@ -17,17 +17,19 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import time
+import warnings
 from collections.abc import Callable
 
 import numpy as np
 
-from ..errors import MissionInfeasible, SolverFailure
+from ..errors import IgnoredOptionWarning, MissionInfeasible, SolverFailure
 from ..inputs.catalog import Catalog
 from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
 from ..network.edges import drift_radius_bounds, node_orbits
-from ..solution import IterationRecord, RunStatus, Solution
+from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunStatus, Solution
 from . import sequential
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import PathSchedule, schedule_plan
@@ -37,7 +39,8 @@ from .sequential import MissionNodes, SequentialSettings, make_legs
 def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
           solver: SolverOptions | None = None, settings: SequentialSettings | None = None,
           progress: Callable[[IterationRecord], None] | None = None,
-          log: Callable[[str], None] | None = None) -> Solution:  # fmt: skip
+          log: Callable[[str], None] | None = None,
+          stop: Callable[[], bool] | None = None) -> Solution:  # fmt: skip
     """Plan the mission: select, order and transfer between n of the catalog's debris.
 
     Parameters
@@ -57,6 +60,9 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         Called with one line of text per step of the certified search as it starts or
         ends (seeding plans, each refinement of the date cells, each relaxation MILP and
         its bound), so that a long run never goes silent.
+    stop : callable, optional
+        Certified search: asked between steps; True ends the search with the best plan so
+        far and its gap, status ``feasible`` (the command line's Ctrl-C).
 
     Returns
     -------
@@ -71,13 +77,18 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     SolverFailure
         The backend failed, or a limit stopped the search before any plan.
     """
+    _check_types(catalog, mission, solver)
     solver = SolverOptions() if solver is None else solver
+    ignored = ignored_options(mission, solver)
+    for message in ignored:
+        warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     if solver.method == "paper":
-        return sequential.solve(catalog, mission, solver=solver, settings=settings,
-                                progress=progress)  # fmt: skip
+        solution = sequential.solve(catalog, mission, solver=solver, settings=settings,
+                                    progress=progress)  # fmt: skip
+        return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
     catalog = Catalog.paper_case() if catalog is None else catalog
     mission = Mission() if mission is None else mission
-    mission.check_candidates(catalog.ids)
+    mission.check_candidates(catalog)
     wall = time.perf_counter()
     nodes = MissionNodes.of(catalog, mission)
     catalog = nodes.catalog
@@ -94,15 +105,55 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
     result = certify(orbits, certified_nodes(nodes, mission), a_low, a_high, solver=solver,
                      gap_rel=solver.gap, time_limit_s=solver.time_limit_s,
-                     on_iteration=on_iteration, progress=log, names=ids)  # fmt: skip
+                     on_iteration=on_iteration, progress=log, names=ids, stop=stop)  # fmt: skip
     if result.status == "infeasible":
         raise MissionInfeasible(_infeasible_message(mission))
     if result.status == "no_plan":
+        bound = (f"; no plan costs less than {result.lower_mps:.2f} m/s"
+                 if np.isfinite(result.lower_mps) else "")  # fmt: skip
         raise SolverFailure(
-            f"the search stopped before finding any plan ({'; '.join(result.notes)}); "
-            f"no plan costs less than {result.lower_mps:.2f} m/s: allow more time"
+            f"the search stopped before finding any plan ({'; '.join(result.notes)}){bound}: "
+            "allow more time (--time-limit, solver.time_limit_s)"
         )
-    return _solution(result, nodes, mission, solver, orbits, records, wall)
+    solution = _solution(result, nodes, mission, solver, orbits, records, wall)
+    return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
+
+
+def ignored_options(mission: Mission | None, solver: SolverOptions) -> list[str]:
+    """The options set away from their defaults that ``solver.method`` does not use."""
+    out = []
+    if (solver.method == "certified" and mission is not None
+            and mission.dv_max_mps != Mission().dv_max_mps):  # fmt: skip
+        out.append(
+            f"mission.dv_max_mps = {mission.dv_max_mps:g} is ignored: it filters the edge "
+            "table of the paper's method (method = 'paper'); the certified search prices "
+            "every transfer"
+        )
+    if solver.method == "paper" and solver.gap != SolverOptions().gap:
+        out.append(
+            f"solver.gap = {solver.gap:g} is ignored: it is the stopping gap of the certified "
+            "search (method = 'certified'); the paper's method proves no bound"
+        )
+    return out
+
+
+def _check_types(catalog, mission, solver) -> None:
+    """A clear :class:`TypeError` for an argument of the wrong kind (a path, a dict)."""
+    import os
+
+    if catalog is not None and not isinstance(catalog, Catalog):
+        hint = ""
+        if isinstance(catalog, str | os.PathLike):
+            path = os.fspath(catalog)
+            hint = (f": read the file first, e.g. solve(sdc_cvx.Catalog.from_csv({path!r}), "
+                    "mission), or inputs.formats.read_catalog for TLE, OMM, GTOC9")  # fmt: skip
+        raise TypeError(f"solve: catalog must be a Catalog, got {type(catalog).__name__} "
+                        f"{catalog!r:.80}{hint}")  # fmt: skip
+    for name, value, kind in (("mission", mission, Mission), ("solver", solver, SolverOptions)):
+        if value is not None and not isinstance(value, kind):
+            hint = f": e.g. {kind.__name__}(**{value!r:.60})" if isinstance(value, dict) else ""
+            raise TypeError(f"solve: {name} must be a {kind.__name__}, got "
+                            f"{type(value).__name__} {value!r:.80}{hint}")  # fmt: skip
 
 
 def _infeasible_message(mission: Mission) -> str:
@@ -134,14 +185,16 @@ def certified_nodes(nodes: MissionNodes, mission: Mission) -> CertifiedNodes:
 
 def _record(row: dict, ids, index: int) -> IterationRecord:
     """One iteration of the certified loop in the columns of the iteration table."""
+    relaxation = "-".join(ids[k] for k in row["path"]) or "none"
     return IterationRecord(
-        iteration=index, path=tuple(ids[k] for k in row["path"]),
+        iteration=index, path=tuple(ids[k] for k in row.get("plan_path", ())),
         dv_linearized_mps=_finite(row["relaxation_mps"]), dv_true_mps=_finite(row["upper_mps"]),
         duration_true_days=None, nodes=row["nodes"], seconds=row["seconds"],
         solve_seconds=row["solve_seconds"], cvxpy_seconds=row["cvxpy_seconds"], alpha_km=None,
-        status="bound",
-        note=f"lower bound {row['lower_mps']:.2f} m/s, best plan {row['upper_mps']:.2f} m/s, "
-             f"{row['arcs']} arcs over {row['cells']} date cells")  # fmt: skip
+        status="bound", elapsed_s=row.get("elapsed"),
+        note=f"lower bound {row['lower_mps']:.2f} m/s, best plan {row['upper_mps']:.2f} m/s "
+             f"(path), relaxation's path {relaxation}, {row['arcs']} arcs over "
+             f"{row['cells']} date cells")  # fmt: skip
 
 
 def _finite(value):
@@ -153,7 +206,8 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
     return solution_of(
         nodes, mission, orbits, result.path, result.schedule,
         status=RunStatus.OPTIMAL if result.status == "optimal" else RunStatus.FEASIBLE,
-        lower_bound_mps=result.lower_mps,
+        lower_bound_mps=result.lower_mps, gap_requested=solver.gap,
+        search_trace=tuple((float(t), _finite(b), _finite(u)) for t, b, u in result.trace),
         backend="+".join(sorted({r["backend"] for r in result.log})) or solver.backend,
         records=records, notes=result.notes,
         model_size={
@@ -168,7 +222,8 @@ def _solution(result: CertifiedResult, nodes: MissionNodes, mission: Mission,
 
 def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: PathSchedule, *,
                 status: RunStatus, lower_bound_mps: float, backend: str, records=(),
-                notes=(), model_size=None, timings=None) -> Solution:  # fmt: skip
+                notes=(), model_size=None, timings=None, gap_requested: float | None = None,
+                search_trace=()) -> Solution:  # fmt: skip
     """The :class:`Solution` of a certified path's schedule, flown in the true model.
 
     Parameters
@@ -183,10 +238,12 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
     schedule : PathSchedule
         A feasible schedule of ``path`` (:func:`~sdc_cvx.planner.fixed_path.solve_path`).
     status : RunStatus
+        ``optimal`` becomes ``within_gap`` when the gap is wider than what is called
+        optimal (``OPTIMAL_GAP_REL``, ``OPTIMAL_GAP_MPS``).
     lower_bound_mps : float
         Proven bound of the mission [m/s] (capped at the plan's total).
     backend : str
-    records, notes, model_size, timings
+    records, notes, model_size, timings, gap_requested, search_trace
         As in :class:`Solution`.
 
     Returns
@@ -198,6 +255,10 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
                                      tmax_days=mission.tmax_days, j2=mission.j2)  # fmt: skip
     ids = nodes.catalog.ids
     total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
+    lower = float(min(lower_bound_mps, total))
+    optimal_gap = max(OPTIMAL_GAP_REL * total, OPTIMAL_GAP_MPS) * (1 + 1e-9)
+    if status == RunStatus.OPTIMAL and total - lower > optimal_gap:
+        status = RunStatus.WITHIN_GAP  # the gap asked for, wider than what is called optimal
     return Solution(
         path=tuple(ids[k] for k in path),
         legs=make_legs(ids, path, schedule.a_drift, schedule.inc_drift, schedule.side, plan),
@@ -213,5 +274,7 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
         timings=dict(timings or {}),
         notes=tuple(plan_notes) + tuple(notes),  # the search's own notes last
         method="certified",
-        lower_bound_mps=float(min(lower_bound_mps, total)),
+        lower_bound_mps=lower,
+        gap_requested=gap_requested,
+        search_trace=tuple(search_trace),
     )

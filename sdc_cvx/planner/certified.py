@@ -144,6 +144,9 @@ class CertifiedResult:
     complete : bool
         False when a limit (time, iterations, a failed MILP) ended the search rather
         than its own criterion (an enumeration is then not known to be whole).
+    trace : tuple of (float, float, float)
+        ``(seconds, bound, plan)`` each time the bound or the plan changed, seconds from
+        the start of :func:`certify` (the setup included).
     """
 
     path: tuple[int, ...]
@@ -160,6 +163,7 @@ class CertifiedResult:
     paths_certified: int = 0
     paths: tuple[CertifiedPath, ...] = ()
     complete: bool = True
+    trace: tuple = ()
 
     @property
     def gap_mps(self) -> float:
@@ -285,7 +289,7 @@ class _Search:
             "cost tables of every edge"
         )
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
-                                   a_low, a_high)  # fmt: skip
+                                   a_low, a_high, on_chunk=self._setup_clock())  # fmt: skip
         self.edge_floor = self.legs.floor(np.arange(len(self.edge_from)))
         # the first network holds every edge: fewer cells when they are many (481 TLE
         # fragments: 230 880 edges, 2 cells each instead of 8 keeps it near 1.4 M arcs)
@@ -296,12 +300,43 @@ class _Search:
         self.schedules: dict[tuple, PathSchedule] = {}  # path -> its best schedule
         self.known = dict(known or {})  # path -> a schedule certified before (a campaign's)
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
+        self.trace: list[tuple[float, float, float]] = []  # (clock, bound, plan) on a change
         self.completion = None  # per node, cheapest walk of k legs from it (network())
         self.notes: list[str] = []
         self.limited = False  # a limit, not the search's own criterion, ended it
 
     def label(self, path) -> str:
         return "-".join(self.names[k] for k in path)
+
+    def _setup_clock(self, every_s: float | None = None):
+        """``LegCosts.build``'s chunk callback: the fraction done every ``every_s``, a word
+        up front when the tables alone will outlast the time limit, and the limit itself
+        (:class:`_OutOfTime`)."""
+        every_s = SETUP_PROGRESS_S if every_s is None else every_s
+        started = last = time.perf_counter()
+        warned = False
+
+        def on_chunk(done: int, total: int) -> None:
+            nonlocal last, warned
+            now = time.perf_counter()
+            if now >= self.deadline and done < total:
+                raise _OutOfTime(f"time limit reached while building the edge cost tables "
+                                 f"({done} of {total} edges in {now - started:.0f} s)")  # fmt: skip
+            need = (now - started) * total / max(done, 1)
+            if not warned and done < total and started + need > self.deadline:
+                warned = True
+                self.say(f"  the edge cost tables alone need about {need:.0f} s, beyond the "
+                         f"time limit ({self.deadline - started:.0f} s left): the search will "
+                         "stop without a plan; raise the time limit")  # fmt: skip
+            if done >= total:  # the heartbeat's phase moves on with this line
+                self.say(f"  cost tables done ({total} edges, {now - started:.0f} s); next: the "
+                         "first network of date cells, its path bounds, cheap paths")  # fmt: skip
+            elif now - last >= every_s:
+                last, spent = now, now - started
+                self.say(f"  cost tables: {done / total:.0%} done ({done} of {total} edges, "
+                         f"{spent:.0f} s, about {need - spent:.0f} s left)")  # fmt: skip
+
+        return on_chunk
 
     def node_cost(self, path) -> float:
         return float(np.sum(self.nodes.cost_mps[list(path)]))
@@ -340,6 +375,7 @@ class _Search:
         total = schedule.upper_mps + self.node_cost(path)
         if total < self.upper:
             self.upper, self.path, self.schedule = total, path, schedule
+            self.trace.append((time.perf_counter(), self.proven, self.upper))
             self.say(f"  plan {self.label(path)}: {total:.2f} m/s ({why})")
 
     def network(self):
@@ -357,7 +393,10 @@ class _Search:
     def prove(self, relaxation_bound: float) -> float:
         """Raise the bound: every plan is on a settled path or above the relaxation's."""
         settled = min(self.settled.values(), default=np.inf)
-        self.proven = max(self.proven, min(relaxation_bound, settled))
+        proven = max(self.proven, min(relaxation_bound, settled))
+        if proven > self.proven:
+            self.trace.append((time.perf_counter(), proven, self.upper))
+        self.proven = proven
         return self.proven
 
     def candidates(self, arcs, count: int):
@@ -385,6 +424,14 @@ class _Search:
         return tuple(sorted(out, key=lambda c: c.upper_mps))
 
 
+class _OutOfTime(Exception):
+    """The time limit ran out during the setup, before any plan."""
+
+
+SETUP_PROGRESS_S = 5.0
+"""Seconds between two progress lines of the edge cost tables."""
+
+
 def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             solver: SolverOptions | None = None, gap_rel: float = DEFAULT_GAP_REL,
             time_limit_s: float | None = None, seeds=(),
@@ -393,7 +440,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
             split_pieces: int = 2, gap_abs_mps: float = PATH_TOL_MPS,
             stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
-            known=None, path_tol_rel: float | None = None) -> CertifiedResult:  # fmt: skip
+            known=None, path_tol_rel: float | None = None,
+            stop: Callable[[], bool] | None = None) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
     Parameters
@@ -439,6 +487,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     path_tol_rel : float, optional
         Relative tolerance of each path's schedule (default ``gap_rel / 2``: a path
         needs no finer certificate than the mission's).
+    stop : callable, optional
+        Asked between steps; True ends the search as a time limit does (the best plan
+        with its gap): the command line's Ctrl-C.
 
     Notes
     -----
@@ -458,11 +509,17 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     clock = time.perf_counter()
     solver = SolverOptions() if solver is None else solver
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
-    search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
-                     say=progress or (lambda line: None), initial_cells=initial_cells,
-                     names=names, gap_abs_mps=gap_abs_mps,
-                     path_tol_rel=gap_rel / 2 if path_tol_rel is None else path_tol_rel,
-                     ceiling_mps=ceiling_mps, known=known)  # fmt: skip
+    stop = stop or (lambda: False)
+    try:
+        search = _Search(orbits, nodes, a_low, a_high, deadline=deadline,
+                         say=progress or (lambda line: None), initial_cells=initial_cells,
+                         names=names, gap_abs_mps=gap_abs_mps,
+                         path_tol_rel=gap_rel / 2 if path_tol_rel is None else path_tol_rel,
+                         ceiling_mps=ceiling_mps, known=known)  # fmt: skip
+    except _OutOfTime as err:
+        return CertifiedResult((), None, np.inf, -np.inf, "no_plan", [], 0, 0,
+                               time.perf_counter() - clock, (str(err),),
+                               complete=False)  # fmt: skip
     enumerating = np.isfinite(ceiling_mps)
     for seed in seeds:
         if len(seed) == nodes.legs + 1:
@@ -480,7 +537,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             break
         beam = []  # the uncut beam paths of the current arcs, cheapest first
         for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
-            if len(arcs) == 0 or time.perf_counter() >= deadline:
+            if len(arcs) == 0 or time.perf_counter() >= deadline or stop():
                 break
             beam = search.candidates(arcs, CANDIDATES)
             open_paths = search.open_paths(beam, gap_rel)
@@ -499,6 +556,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             search.prove(np.inf)  # no path of L legs at all, or none below the plan held
             break
         remaining = deadline - time.perf_counter()
+        if stop() and np.isfinite(search.upper):
+            search.notes.append("interrupted: the best plan so far")
+            search.limited = True
+            break
         if remaining <= 0:
             search.notes.append(f"time limit ({time_limit_s:g} s) reached")
             search.limited = True
@@ -528,12 +589,14 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         if result.path and np.isfinite(result.lower_mps):
             search.try_path(result.path, "relaxation")
         lower = search.prove(result.lower_mps)
-        row = dict(iteration=iteration, path=result.path, relaxation_mps=result.lower_mps,
+        row = dict(iteration=iteration, path=result.path, plan_path=search.path,
+                   relaxation_mps=result.lower_mps,
                    lower_mps=lower, upper_mps=search.upper, arcs=len(arcs),
                    cells=search.parts.count(), nodes=result.report.nodes,
                    solve_seconds=result.report.solve_seconds, backend=result.report.backend,
                    cvxpy_seconds=result.report.overhead_seconds,
-                   seconds=time.perf_counter() - started)  # fmt: skip
+                   seconds=time.perf_counter() - started,
+                   elapsed=time.perf_counter() - clock)  # fmt: skip
         rows.append(row)
         if on_iteration is not None:
             on_iteration(row)
@@ -551,6 +614,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             search.notes.append(f"time limit ({time_limit_s:g} s) reached during a MILP")
             search.limited = True
             break
+        if stop() and np.isfinite(search.upper):
+            search.notes.append("interrupted: the best plan so far")
+            search.limited = True
+            break
         _refine(search.parts, net, arcs, result.arcs, split_pieces)
     else:
         search.notes.append(f"iteration limit ({max_iterations}) reached")
@@ -561,7 +628,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                            search.parts.count(), time.perf_counter() - clock,
                            tuple(search.notes), edges=int(len(search.edge_from)),
                            paths_certified=len(search.settled),
-                           paths=search.certified_paths(), complete=not search.limited)  # fmt: skip
+                           paths=search.certified_paths(), complete=not search.limited,
+                           trace=tuple((t - clock, b, u) for t, b, u in search.trace))  # fmt: skip
 
 
 def _settles(schedule: PathSchedule, cutoff: float, tol_rel: float) -> bool:

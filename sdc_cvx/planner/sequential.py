@@ -938,7 +938,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     mission = Mission() if mission is None else mission
     solver = SolverOptions() if solver is None else solver
     settings = SequentialSettings() if settings is None else settings
-    mission.check_candidates(catalog.ids)
+    mission.check_candidates(catalog)
     wall = time.perf_counter()
     nodes = MissionNodes.of(catalog, mission)
     catalog = nodes.catalog

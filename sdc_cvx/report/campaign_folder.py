@@ -24,13 +24,32 @@ non-empty folder is refused.  An infeasible campaign gets a folder too, with
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_atomic, write_staged
 
 CAMPAIGN_FOLDER_MARKERS = ("campaign.json", "campaign.log", "missions.csv")
 """A folder holding one of these is an earlier campaign folder, which is replaced."""
+CAMPAIGN_FIGURE_NAMES = ("timeline", "raan", "dv", "bound")
+"""The campaign's figures (:mod:`sdc_cvx.report.campaign_plots` draws them)."""
 KIND = "campaign folder"
+
+
+class _CampaignFiles:
+    """The names a campaign folder may hold (an earlier one holding any other name, a
+    file of the user's, is refused rather than replaced)."""
+
+    names = frozenset(
+        {"campaign.json", "campaign.log", "missions.csv", "history.csv", "scenario.toml"}
+        | {f"{name}.{ext}" for name in CAMPAIGN_FIGURE_NAMES for ext in ("png", "svg", "pdf")}
+    )
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.names or re.fullmatch(r"mission_\d{2,}", name) is not None
+
+
+CAMPAIGN_FOLDER_FILES = _CampaignFiles()
 
 
 def write_campaign(folder, solution, *, formats=("png",), scenario_toml: str | None = None,
@@ -89,7 +108,9 @@ def write_campaign(folder, solution, *, formats=("png",), scenario_toml: str | N
         write_atomic(stage / "campaign.json", solution.to_json())
         return names + ["campaign.json"] + mission_files
 
-    return write_staged(folder, fill, markers=CAMPAIGN_FOLDER_MARKERS, kind=KIND)
+    return write_staged(
+        folder, fill, markers=CAMPAIGN_FOLDER_MARKERS, files=CAMPAIGN_FOLDER_FILES, kind=KIND
+    )
 
 
 def write_infeasible_campaign(folder, reason: str, *, start_utc: str | None,
@@ -116,7 +137,9 @@ def write_infeasible_campaign(folder, reason: str, *, start_utc: str | None,
         text = json.dumps(data, indent=2, allow_nan=False)
         return _write_texts(stage, {"campaign.json": text}, scenario_toml, log)
 
-    return write_staged(folder, fill, markers=CAMPAIGN_FOLDER_MARKERS, kind=KIND)
+    return write_staged(
+        folder, fill, markers=CAMPAIGN_FOLDER_MARKERS, files=CAMPAIGN_FOLDER_FILES, kind=KIND
+    )
 
 
 def _write_texts(stage: Path, files: dict, scenario_toml: str | None, log: str | None):
@@ -136,4 +159,4 @@ def campaign_folder_problem(folder) -> str | None:
     """Why ``folder`` cannot take a campaign folder, or None (checked before the search)."""
     from .run_folder import out_folder_problem
 
-    return out_folder_problem(Path(folder), CAMPAIGN_FOLDER_MARKERS, KIND)
+    return out_folder_problem(Path(folder), CAMPAIGN_FOLDER_MARKERS, CAMPAIGN_FOLDER_FILES, KIND)

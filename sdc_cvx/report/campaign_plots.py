@@ -20,8 +20,6 @@ from matplotlib.figure import Figure
 from ..physics.orbits import SECONDS_PER_DAY, raan_rate
 from .run_folder import write_atomic
 
-CAMPAIGN_FIGURE_NAMES = ("timeline", "raan", "dv", "bound")
-"""File stems written by :func:`save_campaign_figures`, in order."""
 FIGURE_SIZE = (9.0, 4.8)
 _CANDIDATE_COLOR = "#c7c7c7"
 _MAX_LABELLED = 12
@@ -185,9 +183,10 @@ def plot_bound(solution) -> Figure:
 
 
 def campaign_figures(solution) -> dict[str, Figure]:
-    """The four figures by name (:data:`CAMPAIGN_FIGURE_NAMES`)."""
-    return {"timeline": plot_timeline(solution), "raan": plot_raan(solution),
-            "dv": plot_dv(solution), "bound": plot_bound(solution)}  # fmt: skip
+    """The four figures by name (``CAMPAIGN_FIGURE_NAMES`` of
+    :mod:`~sdc_cvx.report.campaign_folder`, which lists them without matplotlib)."""
+    draw = {"timeline": plot_timeline, "raan": plot_raan, "dv": plot_dv, "bound": plot_bound}
+    return {name: plot(solution) for name, plot in draw.items()}
 
 
 def save_campaign_figures(solution, folder, formats=("png",), dpi: int = 150) -> list[Path]:

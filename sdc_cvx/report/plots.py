@@ -419,18 +419,17 @@ def plot_raan(solution: Solution, catalog: Catalog) -> Figure:
 
 # ---------------------------------------------------------------------- Fig. 19
 def plot_cost(solution: Solution) -> Figure:
-    """ΔV per leg before and after optimisation: the paper's Fig. 19.
+    """ΔV per leg, and before the optimisation when there was a before: the paper's Fig. 19.
 
-    Grouped bars per leg index 1..n-1: ``solution.initial_legs`` (the first
-    iteration's plan, "before optimisation") and ``solution.legs`` (the re-optimised
-    plan, "after"), each bar labelled with its value [m/s]; the totals are in the
-    legend.  The tick under each group names the leg (``leg 1`` and ``5→8``); when
-    the two plans follow different paths, each bar gets its own ``from→to`` right
-    under it (minor tick labels) and the group only its index.
-
-    Parameters
-    ----------
-    solution : Solution
+    Bars per leg index 1..n-1: ``solution.legs`` (the plan), and beside them
+    ``solution.initial_legs`` (the first iteration's plan, "before optimisation") when
+    the solution has one (the paper's method; the certified search has no "before").
+    Operations ΔV (``deorbit_by = "vehicle"``, ``operations_dv_mps``) is drawn stacked
+    on each leg's bar, at the leg's arrival debris as in ``legs.csv``, and counted in
+    the legend's total, which is the summary's.  Each bar is labelled with its value
+    [m/s]; the tick under each group names the leg (``leg 1`` and ``5→8``), turned when
+    the names would collide (GTOC9's long ids, n = 10); when the two plans follow
+    different paths, each bar gets its own ``from→to`` (minor tick labels).
 
     Returns
     -------
@@ -442,7 +441,12 @@ def plot_cost(solution: Solution) -> Figure:
     count = max(len(before), len(after))
     x = np.arange(1, count + 1)
     width = 0.38 if before else 0.6
+    names = [_leg_name(leg) for leg in after]
+    longest = max((len(name) for name in names), default=0)
+    crowded = count * (2 if before else 1) > 8 or count * max(longest, 6) > 60
+    value_size = _NOTE_SIZE - 2 if crowded else _NOTE_SIZE
     series = []
+    plan_name = "after optimisation" if before else "plan"
     if before:
         total = sum(leg.dv_mps for leg in before)
         series.append(
@@ -450,18 +454,14 @@ def plot_cost(solution: Solution) -> Figure:
                 before,
                 -width / 2,
                 _BEFORE_COLOR,
-                f"before optimisation ({_path_name(_legs_path(before))}): {total:.1f} m/s"
-                + (" transfers" if solution.operations_dv_mps else ""),
+                f"before optimisation ({_short(_path_name(_legs_path(before)))}): "
+                f"{total:.1f} m/s" + (" transfers" if solution.operations_dv_mps else ""),
             )
         )
     total = sum(leg.dv_mps for leg in after)
-    label = f"after optimisation ({_path_name(_legs_path(after))}): {total:.1f} m/s"
+    label = f"{plan_name} ({_short(_path_name(_legs_path(after)))}): {total:.1f} m/s"
     if solution.operations_dv_mps:  # the total ΔV is that of the summary and solution.json
-        label = (
-            f"after optimisation ({_path_name(_legs_path(after))}): {total:.1f} m/s transfers"
-            f" + {solution.operations_dv_mps:.1f} m/s operations = "
-            f"{solution.total_dv_mps:.1f} m/s"
-        )
+        label = f"{plan_name} ({_short(_path_name(_legs_path(after)))}): {total:.1f} m/s transfers"
     series.append((after, width / 2 if before else 0.0, _AFTER_COLOR, label))
     for legs, shift, color, label in series:
         bars = ax.bar(
@@ -473,26 +473,54 @@ def plot_cost(solution: Solution) -> Figure:
             linewidth=0.5,
             label=label,
         )
-        ax.bar_label(bars, fmt="%.1f", fontsize=_NOTE_SIZE, padding=2)
+        ax.bar_label(bars, fmt="%.1f", fontsize=value_size, padding=2,
+                     rotation=90 if crowded else 0, label_type="center" if crowded else "edge",
+                     color="white" if crowded and color == _AFTER_COLOR else "black")  # fmt: skip
+    operations = _operations_per_leg(solution)
+    tops = [leg.dv_mps for leg in after]
+    if operations is not None:
+        shift = width / 2 if before else 0.0
+        bars = ax.bar(
+            x[: len(after)] + shift, operations, width, bottom=tops, color="#fdae6b",
+            edgecolor="#303030", linewidth=0.5, hatch="//", gid="operations",
+            label=(f"operations (deorbit by {solution.operations.get('scenario', '?')}): "
+                   f"{total:.1f} m/s transfers + {solution.operations_dv_mps:.1f} m/s "
+                   f"operations = {solution.total_dv_mps:.1f} m/s"),
+        )  # fmt: skip
+        ax.bar_label(bars, fmt="%.1f", fontsize=value_size, padding=2,
+                     rotation=90 if crowded else 0,
+                     label_type="center" if crowded else "edge")  # fmt: skip
+        tops = [a + b for a, b in zip(tops, operations, strict=True)]
 
-    same_path = [_leg_name(leg) for leg in before] == [_leg_name(leg) for leg in after]
+    same_path = [_leg_name(leg) for leg in before] == names
+    turn = count * max(longest, 6) > 60  # the names would run into each other
     if not before or same_path:
-        ax.set_xticks(x, [f"leg {k + 1}\n{_leg_name(after[k])}" for k in range(count)])
+        if turn:
+            ax.set_xticks(x, [f"{k + 1}: {names[k]}" for k in range(count)],
+                          rotation=90 if longest > 12 else 35, ha="right",
+                          rotation_mode="anchor", fontsize=_NOTE_SIZE - 1)  # fmt: skip
+        else:
+            ax.set_xticks(x, [f"leg {k + 1}\n{names[k]}" for k in range(count)])
     else:  # each bar's own from→to right under it, the leg index below
         ax.set_xticks(x, [f"leg {k + 1}" for k in range(count)])
-        ax.tick_params(axis="x", which="major", length=0, pad=20)
-        positions, names = [], []
+        ax.tick_params(axis="x", which="major", length=0, pad=20 if not turn else 60)
+        positions, labels = [], []
         for legs, shift, *_ in series:
             positions += list(x[: len(legs)] + shift)
-            names += [_leg_name(leg) for leg in legs]
-        ax.set_xticks(positions, names, minor=True)
-        ax.tick_params(axis="x", which="minor", length=3, labelsize=_NOTE_SIZE)
+            labels += [_leg_name(leg) for leg in legs]
+        ax.set_xticks(positions, labels, minor=True)
+        ax.tick_params(axis="x", which="minor", length=3, labelsize=_NOTE_SIZE - (2 if turn else 0))
+        if turn:
+            for text in ax.get_xticklabels(minor=True):
+                text.set_rotation(90)
     ax.set_xlim(0.4, count + 0.6)
-    top = max([leg.dv_mps for leg in before + after], default=1.0)
+    top = max([leg.dv_mps for leg in before] + tops, default=1.0)
     ax.set_ylim(0.0, top * 1.32)
     ax.set_xlabel("leg", fontsize=_LABEL_SIZE)
     ax.set_ylabel("\u0394V [m/s]", fontsize=_LABEL_SIZE)
-    ax.set_title("Mission cost before and after optimisation (paper Fig. 19)", fontsize=_TITLE_SIZE)
+    title = ("Mission cost before and after optimisation (paper Fig. 19)" if before
+             else "Mission cost per leg (paper Fig. 19)")  # fmt: skip
+    ax.set_title(title, fontsize=_TITLE_SIZE)
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     ax.set_axisbelow(True)
     ax.legend(
@@ -501,51 +529,93 @@ def plot_cost(solution: Solution) -> Figure:
     return fig
 
 
+def _short(text: str, width: int = 44) -> str:
+    """``text``, cut to ``width`` characters with an ellipsis (a legend stays a legend)."""
+    return text if len(text) <= width else text[: width - 1] + "\u2026"
+
+
+def _operations_per_leg(solution: Solution) -> list[float] | None:
+    """Operations ΔV carried by each leg (at its arrival debris; the first leg also those
+    at the first debris), as in ``legs.csv``; None when there are none."""
+    if not solution.operations_dv_mps or not solution.legs:
+        return None
+    per_debris = dict(solution.operations.get("per_debris_mps") or {})
+    out = [float(per_debris.get(leg.to_id, 0.0)) for leg in solution.legs]
+    out[0] += float(per_debris.get(solution.legs[0].from_id, 0.0))
+    return out
+
+
 def _legs_path(legs: Sequence[Leg]) -> list[str]:
     return [legs[0].from_id, *(leg.to_id for leg in legs)] if legs else []
 
 
 # ---------------------------------------------------------------------- Table 7
 def _plot_certified_search(solution: Solution) -> Figure:
-    """The certified search's history: each relaxation's bound and the best plan so far.
+    """The certified search over time: the proven lower bound and the best plan, and the
+    gap between them.
 
-    x: relaxation MILP; y: ΔV [m/s].  The proven lower bound at the end (the best of
-    every bound found, relaxations and settled paths) is the dotted line; the plan is
-    within the shaded gap of it.
+    x: seconds since the search started (its setup included); y: ΔV [m/s].  The best
+    plan (solid) and the proven bound (dashed) are steps that change at each plan found
+    and each bound proven (``Solution.search_trace``); every relaxation MILP is a square
+    at the time it ended, at its own bound; the gap between them is shaded.  Without a
+    trace (a solution from an older file), the relaxations are placed by their index.
     """
     fig, ax = _new_figure()
+    trace = [(t, lo, up) for t, lo, up in solution.search_trace]
     records = [r for r in solution.iterations if r.status == "bound"]
-    steps = [r.iteration for r in records]
-    bound = [np.nan if r.dv_linearized_mps is None else r.dv_linearized_mps for r in records]
-    plan = [np.nan if r.dv_true_mps is None else r.dv_true_mps for r in records]
-    ax.plot(steps, bound, marker="s", markersize=5, linestyle="--", color="#6baed6",
-            label="relaxation's bound (paths not yet settled)", gid="relaxation")  # fmt: skip
-    ax.plot(steps, plan, marker="o", markersize=5, color=_AFTER_COLOR,
-            label="best plan so far", gid="plan")  # fmt: skip
-    if solution.lower_bound_mps is not None:
+    end = max([t for t, *_ in trace] + [r.elapsed_s or 0.0 for r in records] + [0.0])
+    end = max(end, float(solution.timings.get("search_s") or 0.0))
+    values = []
+    if trace:
+        end = end * 1.04 + 1e-3  # the last values held to the right edge
+        times = np.array([t for t, *_ in trace] + [end])
+        lower = np.array([np.nan if lo is None else lo for _, lo, _ in trace], dtype=float)
+        plan = np.array([np.nan if up is None else up for *_, up in trace], dtype=float)
+        lower, plan = np.append(lower, lower[-1]), np.append(plan, plan[-1])
+        ax.step(times, plan, where="post", color=_AFTER_COLOR, linewidth=1.6,
+                label="best plan so far", gid="plan")  # fmt: skip
+        ax.step(times, lower, where="post", color=_LIMIT_COLOR, linestyle="--", linewidth=1.4,
+                label="proven lower bound", gid="lower-bound")  # fmt: skip
+        ax.fill_between(times, lower, plan, step="post", where=np.isfinite(lower + plan),
+                        color=_LIMIT_COLOR, alpha=0.12, label="gap", gid="gap")  # fmt: skip
+        found = np.isfinite(plan[:-1]) & (np.r_[np.nan, plan[:-2]] != plan[:-1])
+        ax.plot(times[:-1][found], plan[:-1][found], "o", color=_AFTER_COLOR, markersize=4,
+                gid="plans")  # each plan found  # fmt: skip
+        values += [v for v in np.concatenate([lower, plan]) if np.isfinite(v)]
+        ax.set_xlabel("time since the search started [s]", fontsize=_LABEL_SIZE)
+    else:
+        ax.set_xlabel("relaxation MILP", fontsize=_LABEL_SIZE)
+    at = [(r.elapsed_s if trace and r.elapsed_s is not None else r.iteration + 1,
+           r.dv_linearized_mps) for r in records if r.dv_linearized_mps is not None]  # fmt: skip
+    if at:
+        ax.plot([t for t, _ in at], [v for _, v in at], "s", markersize=5, color="#6baed6",
+                linestyle="none", label="relaxation MILP's bound", gid="relaxation")  # fmt: skip
+        values += [v for _, v in at]
+    if not trace and solution.lower_bound_mps is not None:
         ax.axhline(solution.lower_bound_mps, color=_LIMIT_COLOR, linestyle=":", linewidth=1.2,
                    label=f"proven lower bound {solution.lower_bound_mps:.2f} m/s",
                    gid="lower-bound")  # fmt: skip
-        ax.axhspan(solution.lower_bound_mps, solution.total_dv_mps, color=_LIMIT_COLOR,
-                   alpha=0.08, gid="gap")  # fmt: skip
-    proven = [] if solution.lower_bound_mps is None else [solution.lower_bound_mps]
-    finite = [v for v in bound + plan + proven if np.isfinite(v)]
-    if finite:  # a relaxation far below the plan must not flatten the picture
-        top = max(finite + [solution.total_dv_mps])
-        low = max(min(finite), solution.total_dv_mps - 3 * (top - min(plan or [top])) - 50.0)
-        low = min([low, *proven])  # the proven bound stays in the picture
+    values += [solution.total_dv_mps] + (
+        [] if solution.lower_bound_mps is None else [solution.lower_bound_mps]
+    )
+    finite = [v for v in values if np.isfinite(v)]
+    if finite:  # a first bound far below the plan must not flatten the end of the search
+        top = max(finite)
+        floor = solution.lower_bound_mps if solution.lower_bound_mps is not None else top
+        low = max(min(finite), floor - 3 * (top - floor) - 50.0)
+        low = min(low, floor)
         ax.set_ylim(low - 0.02 * (top - low) - 1e-3, top + 0.05 * (top - low) + 1e-3)
-    from matplotlib.ticker import MaxNLocator
-
-    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    if steps:  # one relaxation is a point, not a span of -0.05..0.05
-        ax.set_xlim(min(steps) - 0.5, max(steps) + 0.5)
-        if len(steps) <= 12:
-            ax.set_xticks(steps)
-    ax.set_xlabel("relaxation MILP", fontsize=_LABEL_SIZE)
+    if trace:
+        ax.set_xlim(0.0, end)
+    elif at:
+        ax.set_xlim(min(t for t, _ in at) - 0.5, max(t for t, _ in at) + 0.5)
+    gap = "" if solution.gap_mps is None else (
+        f"; gap {solution.gap_mps:.2f} m/s ({100 * solution.gap_rel:.2f} %)")  # fmt: skip
+    ax.set_title(f"Certified search: {solution.total_dv_mps:.2f} m/s, {solution.status}{gap}",
+                 fontsize=_LABEL_SIZE)  # fmt: skip
     ax.set_ylabel("\u0394V [m/s]", fontsize=_LABEL_SIZE)
-    ax.set_title(f"Certified search: {solution.quality()}", fontsize=_LABEL_SIZE)
-    ax.legend(fontsize=_NOTE_SIZE, loc="lower right")
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    ax.legend(fontsize=_NOTE_SIZE, loc="best")
     ax.tick_params(labelsize=_TICK_SIZE)
     return fig
 

@@ -11,12 +11,26 @@ next to it) and swaps it in at once, so ``--out`` never shows a mix of two runs:
 for an existing ``--out`` (:func:`out_folder_problem`): a new or empty folder is used;
 an earlier run folder (one holding ``solution.json``, ``run.log`` or ``legs.csv``) is
 replaced whole, stale files (an old ``.svg``) included; any other non-empty folder is
-refused, so a mistyped ``--out ~`` cannot replace a home folder.
+refused, so a mistyped ``--out ~`` cannot replace a home folder.  The folder one is in
+(``--out .``) or one of its parents is refused too: swapping it would leave the shell in
+a deleted folder.  A symlinked folder is followed (:func:`real_folder`): the run folder
+is written where the link points and the link stays.
+
+While ``run`` lasts, its progress goes to a live log ``NAME.log`` beside the folder
+(:func:`open_live_log`), which also locks the folder: a second run into the same folder
+at once is refused.  The live log starts with :data:`LIVE_LOG_SIGNATURE`, so that a file
+``NAME.log`` of the user's is never overwritten (the run is refused) while a log a
+killed run left is replaced by the next run.  :func:`write_run` holds a lock on the
+parent folder while it writes and swaps, so two saves into one folder at once follow
+each other (the last one wins) instead of mixing.
 """
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
+import errno
+import fcntl
 import os
 import shutil
 import tempfile
@@ -24,7 +38,7 @@ from collections.abc import Callable
 from datetime import datetime
 from functools import partial
 from pathlib import Path
-from typing import BinaryIO
+from typing import BinaryIO, TextIO
 
 import pandas as pd
 
@@ -34,6 +48,15 @@ from ..solution import Solution
 
 RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
 """A folder holding one of these is an earlier run folder, which ``write_run`` replaces."""
+FIGURE_NAMES = ("orbits", "raan", "cost", "iterations")
+RUN_FOLDER_FILES = frozenset(
+    {"solution.json", "run.log", "legs.csv", "iterations.csv", "edges.csv", "scenario.toml"}
+    | {f"{name}.{ext}" for name in FIGURE_NAMES for ext in ("png", "svg", "pdf")}
+)
+"""Every file a run folder may hold: an earlier run folder with any other file in it (a
+file of the user's) is refused, not replaced with it."""
+LIVE_LOG_SIGNATURE = "# sdc_cvx live run log: it moves into the run folder as run.log at the end"
+"""First line of a live log: a ``NAME.log`` without it is the user's and never touched."""
 CSV_FLOAT_FORMAT = "%.10g"
 """Floats in the CSV files: 10 significant digits (no ``98.30000000000001``)."""
 
@@ -85,16 +108,32 @@ def new_run_folder(parent: Path | str = ".", prefix: str = "sdc_run_") -> Path:
     raise FileExistsError(f"cannot create a new run folder under {parent}")
 
 
+def real_folder(folder: Path | str) -> Path:
+    """``folder``, or where it points when it is a symbolic link (followed, not replaced)."""
+    folder = Path(folder)
+    return Path(os.path.realpath(folder)) if folder.is_symlink() else folder
+
+
 def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
-                       kind: str = "run folder") -> str | None:  # fmt: skip
+                       files=RUN_FOLDER_FILES, kind: str = "run folder") -> str | None:  # fmt: skip
     """Why ``folder`` cannot take a run folder, or None (checked before any solve).
 
     Refused: a path inside a file, a file, a non-empty folder that is not an earlier
-    run folder (one holding one of ``markers``; see the module docstring), and a place
-    the user cannot write to.  ``kind`` names the folder in the message (a campaign
-    folder has markers of its own).
+    run folder (see the module docstring), the current folder or one of its parents,
+    and a place the user cannot write to.  ``markers`` (what makes an earlier folder),
+    ``files`` (what such a folder may hold: a container of names) and ``kind`` (its
+    name in messages) are a campaign folder's when it is one.
     """
-    folder = Path(folder)
+    given = Path(folder)
+    folder = real_folder(given)
+    resolved = Path(os.path.realpath(folder))
+    here = Path.cwd().resolve()
+    if resolved == here or resolved in here.parents:
+        which = "the current folder" if resolved == here else "a parent of the current folder"
+        return (
+            f"{given} is {which}: a {kind} is swapped in whole, which would remove the "
+            f"folder you are in; choose a new folder, e.g. --out {given / 'run'}"
+        )
     if folder.exists() and not folder.is_dir():
         return f"{folder} is a file, not a folder"
     ancestor = folder if folder.exists() else folder.parent
@@ -109,12 +148,104 @@ def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
                 f"{', '.join(markers)}); choose a new or empty folder (an earlier "
                 f"{kind} is replaced whole)"
             )
+        foreign = sorted(p.name for p in folder.iterdir() if p.name not in files)
+        if foreign:
+            more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
+            shown = ", ".join(foreign[:5]) + more
+            return (
+                f"{folder} is an earlier {kind} but also holds {shown}, which sdc_cvx "
+                "did not write; replacing the folder would delete them: move them out or "
+                "choose another folder"
+            )
         if not os.access(folder.parent, os.W_OK | os.X_OK):
             return f"cannot replace {folder}: {folder.parent} is not writable"
     parent = folder.parent if folder.exists() else ancestor
     if not os.access(parent, os.W_OK | os.X_OK):
         return f"cannot create {folder}: {parent} is not writable"
     return None
+
+
+def live_log_path(folder: Path | str) -> Path:
+    """The live log of a run into ``folder``: ``NAME.log`` beside it."""
+    folder = real_folder(folder)
+    return folder.with_name(folder.name + ".log")
+
+
+class FolderBusy(FileExistsError):
+    """Another run is writing the same folder now."""
+
+
+def open_live_log(folder: Path | str) -> TextIO:
+    """Create (or take over) the live log of a run into ``folder``, locked, and return it.
+
+    The file is ``NAME.log`` beside the folder, opened for writing with an exclusive
+    ``flock`` held until it is closed, and starts with :data:`LIVE_LOG_SIGNATURE`.  A live
+    log left by a killed run (signed, unlocked) is taken over.
+
+    Raises
+    ------
+    FolderBusy
+        Another process holds the lock: a run into the same folder is under way.
+    FileExistsError
+        ``NAME.log`` exists and is not a live log of sdc_cvx (a file of the user's).
+    OSError
+        It cannot be created (with the reason).
+    """
+    path = live_log_path(folder)
+    for _ in range(5):  # the file may change under us (a run ending, another starting)
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL, file_mode())
+            created = True
+        except FileExistsError:
+            fd = os.open(path, os.O_RDWR)
+            created = False
+        try:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                raise FolderBusy(
+                    f"another sdc_cvx run is writing {folder} now (its progress: {path}); "
+                    "wait for it to end or choose another folder"
+                ) from None
+            try:
+                same = os.path.samestat(os.fstat(fd), os.stat(path))
+            except FileNotFoundError:
+                same = False
+            if not same:  # removed or replaced between the open and the lock: again
+                os.close(fd)
+                continue
+            if not created:
+                with os.fdopen(os.dup(fd), "r", encoding="utf-8", errors="replace") as text:
+                    first = text.readline().rstrip("\n")
+                if first != LIVE_LOG_SIGNATURE:
+                    raise FileExistsError(
+                        f"{path} exists and is not a log of sdc_cvx: a run into {folder} "
+                        f"keeps its progress there while it lasts, and never overwrites a file "
+                        f"of yours; move {path.name} or choose another folder"
+                    )
+                os.ftruncate(fd, 0)
+                os.lseek(fd, 0, os.SEEK_SET)
+            stream = os.fdopen(fd, "w", encoding="utf-8", buffering=1)
+        except BaseException:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+            if created:
+                path.unlink(missing_ok=True)
+            raise
+        stream.write(LIVE_LOG_SIGNATURE + "\n")
+        return stream
+    raise FolderBusy(f"{path} keeps changing: another run into {folder} is starting or ending")
+
+
+@contextlib.contextmanager
+def _parent_lock(folder: Path):
+    """An exclusive ``flock`` on ``folder``'s parent while a run folder is written there."""
+    fd = os.open(folder.parent, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
 
 
 def legs_table(solution: Solution) -> pd.DataFrame:
@@ -205,7 +336,9 @@ def write_run(
     FileExistsError
         ``folder`` is refused (:func:`out_folder_problem`).
     OSError
-        The folder cannot be written.
+        The folder cannot be written: the message names the folder and the reason, the
+        ``errno`` is the system's (``ENOSPC`` for a full disk).  Nothing is left behind:
+        no folder it created, no hidden ``.partial`` folder.
     """
     return write_staged(folder, partial(_write_files, solution=solution, edges=edges,
                                         scenario_toml=scenario_toml, catalog=catalog,
@@ -213,28 +346,49 @@ def write_run(
 
 
 def write_staged(folder: Path | str, fill: Callable[[Path], list[str]], *,
-                 markers=RUN_FOLDER_MARKERS, kind: str = "run folder") -> list[Path]:  # fmt: skip
+                 markers=RUN_FOLDER_MARKERS, files=RUN_FOLDER_FILES,
+                 kind: str = "run folder") -> list[Path]:  # fmt: skip
     """Write a folder aside with ``fill(stage)`` and swap it in at once.
 
     The one staged writer of sdc_cvx's folders (a run folder, a campaign folder): the
-    policy of :func:`out_folder_problem` (with ``markers`` and ``kind``), a hidden
-    ``.NAME.*.partial`` folder next to ``folder`` filled by ``fill``, which returns the
-    names it wrote, then one rename.  A failure or a kill leaves the old folder whole.
+    policy of :func:`out_folder_problem` (with ``markers``, ``files`` and ``kind``), a
+    lock on the parent folder, a hidden ``.NAME.*.partial`` folder next to ``folder``
+    filled by ``fill`` (which returns the names it wrote), then one rename.  A failure
+    or a kill leaves the old folder whole; a failure leaves nothing it created.
     """
-    folder = Path(folder)
-    problem = out_folder_problem(folder, markers, kind)
+    given = Path(folder)
+    folder = real_folder(given)
+    problem = out_folder_problem(given, markers, files, kind)
     if problem is not None:
         raise FileExistsError(problem)
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    _remove_stale_stages(folder)
-    stage = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial"))
+    created = [p for p in (folder.parent, *folder.parent.parents) if not p.exists()]
+    stage = None
     try:
-        os.chmod(stage, file_mode(0o777))
-        names = fill(stage)
-        _pause_before_swap()
-        _swap_in(stage, folder)
-    except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
+        folder.parent.mkdir(parents=True, exist_ok=True)
+        with _parent_lock(folder):
+            problem = out_folder_problem(given, markers, files, kind)  # no other save now
+            if problem is not None:
+                raise FileExistsError(problem)
+            remove_stale_stages(folder)
+            stage = Path(
+                tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial")
+            )
+            os.chmod(stage, file_mode(0o777))
+            names = fill(stage)
+            _pause_before_swap()
+            _swap_in(stage, folder)
+            stage = None
+    except BaseException as err:
+        if stage is not None:
+            shutil.rmtree(stage, ignore_errors=True)
+        for parent in created:  # the parents it made, innermost first, if still empty
+            with contextlib.suppress(OSError):
+                parent.rmdir()
+        if isinstance(err, OSError) and not isinstance(err, FileExistsError):
+            reason = err.strerror or str(err)
+            where = f" ({err.filename})" if err.filename else ""
+            message = f"cannot write the {kind} {given}: {reason}{where}"
+            raise OSError(err.errno or errno.EIO, message) from err
         raise
     return [folder / name for name in names]
 
@@ -273,8 +427,13 @@ def _pause_before_swap() -> None:
         time.sleep(float(seconds))
 
 
-def _remove_stale_stages(folder: Path) -> None:
-    """Remove the hidden folders a killed write left next to ``folder``."""
+def remove_stale_stages(folder: Path | str) -> None:
+    """Remove the hidden folders a killed write left next to ``folder``.
+
+    ``run`` calls it as it starts, once it holds the folder's lock (:func:`open_live_log`),
+    so what a kill left aside lasts until the next run into the folder starts.
+    """
+    folder = real_folder(folder)
     for stale in folder.parent.glob(f".{folder.name}.*.partial"):
         if stale.is_dir():
             shutil.rmtree(stale, ignore_errors=True)

@@ -55,11 +55,21 @@ def _executor(executor, scheduler, workers, pending: int) -> Iterator[cf.Executo
     )
     try:
         yield pool
-    except BaseException:
+    except BaseException as err:
+        if not isinstance(err, Exception):  # Ctrl-C, exit: the running scenarios end too,
+            _terminate(pool)  # or the interpreter's exit would wait for them to finish
         pool.shutdown(wait=False, cancel_futures=True)
         raise
     else:
         pool.shutdown(wait=True)
+
+
+def _terminate(pool: cf.ProcessPoolExecutor) -> None:
+    """End the pool's worker processes now (what they were computing is lost: a resumed
+    sweep runs those scenarios again)."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        with contextlib.suppress(Exception):
+            process.terminate()
 
 
 _THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
@@ -79,8 +89,12 @@ _WATCH_SECONDS = 0.5
 
 def _init_worker(sweep_pid: int) -> None:
     """Initializer of the local pool's processes: die with the sweep, one BLAS thread."""
+    import signal
+
     _die_with(sweep_pid)
     _one_thread_per_worker()
+    # Ctrl-C is the sweep's to handle (it says how to resume); a worker ends with it
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _die_with(sweep_pid: int) -> None:
@@ -174,8 +188,10 @@ def _locked(out: Path) -> Iterator[None]:
             fcntl.lockf(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
             raise SweepError(f"another sweep is writing to {out}") from None
-        yield
-        (out / _LOCK_NAME).unlink(missing_ok=True)  # a finished folder keeps no lock file
+        try:
+            yield
+        finally:  # finished, refused (a --resume of another study) or interrupted: no lock file
+            (out / _LOCK_NAME).unlink(missing_ok=True)
     finally:
         handle.close()
 

@@ -157,7 +157,12 @@ def run_study(
         raise ValueError(f"workers must be a positive integer, got {workers!r}")
     if isinstance(scheduler, str | os.PathLike) and importlib.util.find_spec("distributed") is None:
         raise SweepError("a Dask scheduler needs dask.distributed: pip install 'sdc_cvx[dask]'")
+    if executor is None and scheduler is None:
+        _check_main_guard()
     out = Path(out_dir)
+    problem = sweep_folder_problem(out)
+    if problem is not None:
+        raise SweepError(problem)
     planned = [_plan(item) for item in study.scenarios]
     out.mkdir(parents=True, exist_ok=True)
     with _locked(out):
@@ -208,6 +213,84 @@ def sweep(
         study = load_study(study_or_path)
     folder = Path(out_dir) if out_dir is not None else new_run_folder(prefix="sdc_sweep_")
     return run_study(study, folder, **kwargs)
+
+
+SWEEP_FOLDER_MARKERS = ("results.csv", "study.toml", "scenarios")
+"""A folder holding one of these is a sweep folder (finished, or killed early)."""
+
+
+def sweep_folder_problem(out: Path) -> str | None:
+    """Why ``out`` cannot take a sweep, or None: a file, or a non-empty folder that is not
+    a sweep folder (an earlier run folder, a folder of the user's) is refused, as ``run``
+    refuses a folder that is not a run folder."""
+    if out.exists() and not out.is_dir():
+        return f"{out} is a file, not a folder"
+    foreign = not any((out / name).exists() for name in SWEEP_FOLDER_MARKERS)
+    if out.is_dir() and any(out.iterdir()) and foreign:
+        return (
+            f"{out} is not empty and is not a sweep folder (no "
+            f"{', '.join(SWEEP_FOLDER_MARKERS)}); choose a new or empty folder"
+        )
+    return None
+
+
+def _check_main_guard() -> None:
+    """Refuse a sweep started at the top level of a script without a main guard.
+
+    The local pool's worker processes import the script that started the sweep (as
+    ``__mp_main__``): a call outside ``if __name__ == "__main__":`` would start the sweep
+    again in each of them, and they die with a traceback each.  Found by reading the
+    script: the calling line must lie inside such an ``if``.
+    """
+    import ast
+    import inspect
+
+    frame = inspect.currentframe()
+    while frame is not None:
+        module = frame.f_globals.get("__name__")
+        if frame.f_code.co_name == "<module>" and module in ("__main__", "__mp_main__"):
+            break
+        frame = frame.f_back
+    if frame is None:
+        return  # not called from a script's top level (a function, a notebook, the CLI)
+    spec = frame.f_globals.get("__spec__")
+    name = getattr(spec, "name", None) or ""
+    if name == "__main__" or name.endswith(".__main__"):
+        return  # python -m package: workers do not import it again (multiprocessing.spawn)
+    path, line = frame.f_code.co_filename, frame.f_lineno
+    script = frame.f_globals.get("__file__")
+    try:
+        if script is None or not os.path.samefile(script, path):
+            return  # a notebook cell or an interactive session: nothing for workers to import
+    except OSError:
+        return
+    try:
+        tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    except (OSError, SyntaxError, ValueError):
+        return  # no script to read (python -c, an interactive session)
+
+    def guard(node) -> bool:
+        test = node.test
+        return (
+            isinstance(test, ast.Compare) and len(test.comparators) == 1
+            and {type(test.left), type(test.comparators[0])} == {ast.Name, ast.Constant}
+            and {getattr(test.left, "id", None), getattr(test.comparators[0], "id", None)}
+            >= {"__name__"}
+            and "__main__" in {getattr(test.left, "value", None),
+                               getattr(test.comparators[0], "value", None)}
+        )  # fmt: skip
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and guard(node):
+            end = max(getattr(n, "end_lineno", n.lineno) for n in node.body)
+            if node.body[0].lineno <= line <= end:
+                return
+    raise SweepError(
+        f"{path}, line {line}: the sweep is started at the top level of the script, "
+        'without `if __name__ == "__main__":`; its worker processes import the script '
+        "and would start the sweep again: put the call under that guard (or pass "
+        "executor= or scheduler=)"
+    )
 
 
 def _plan(item: StudyScenario) -> _Planned:
@@ -262,7 +345,24 @@ def _previous_rows(out: Path, study: Study, planned, resume: bool) -> dict[str, 
 
 
 def _write_inputs(out: Path, study: Study, planned: Sequence[_Planned]) -> None:
-    write_atomic(out / "study.toml", study.text if study.text is not None else study.to_toml())
+    """``study.toml`` (self-contained: it resumes the sweep from the folder, wherever the
+    original's relative paths pointed; the original text follows as comments) and each
+    scenario's TOML."""
+    text = study.to_toml()
+    source = getattr(study, "source", None)
+    if (
+        study.text is not None
+        and source is not None
+        and Path(source).resolve() == (out / "study.toml").resolve()
+    ):
+        text = study.text  # resumed from the folder's own copy: kept as it is
+    elif study.text is not None:
+        where = f" ({study.source})" if getattr(study, "source", None) else ""
+        original = "".join(f"# {line}\n" for line in study.text.splitlines())
+        text = (f"# the study as run, self-contained (resume: sdc-cvx sweep THIS_FILE "
+                f"--resume --out THIS_FOLDER)\n{text}\n# the study file as given{where}:\n"
+                f"{original}")  # fmt: skip
+    write_atomic(out / "study.toml", text)
     for p in planned:
         folder = out / "scenarios" / p.item.key
         folder.mkdir(parents=True, exist_ok=True)

@@ -568,6 +568,14 @@ def _make(cls, table: str, values: dict, problems: list[str]):
                 f"{', '.join(MILP_BACKENDS)}; got {_show(values['backend'])}"
             )
             del values["backend"]
+    if table == "solver" and "fallback" in values:
+        unknown = [b for b in values["fallback"] if str(b).upper() not in MILP_BACKENDS]
+        if unknown:
+            problems.append(
+                f"solver.fallback must name MILP backends, from "
+                f"{', '.join(MILP_BACKENDS)}; got {', '.join(_show(b) for b in unknown)}"
+            )
+            del values["fallback"]
     try:
         return cls(**values)
     except (MissionError, ValueError) as err:

@@ -29,7 +29,27 @@ def read_toml(path: str | os.PathLike, what: str) -> tuple[str, dict]:
     try:
         return text, tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError.collect(where, [f"invalid TOML: {exc}"]) from None
+        hint = ""
+        if what == "scenario file" and _looks_like_a_catalog(path, text):
+            hint = (f" (this looks like a debris catalog, not a {what}: pass it with "
+                    f"--catalog {where})")  # fmt: skip
+        raise ScenarioError.collect(where, [f"invalid TOML: {exc}{hint}"]) from None
+
+
+CATALOG_SUFFIXES = (".csv", ".tle", ".txt", ".xml", ".json", ".kvn", ".omm", ".3le")
+"""Extensions of catalog files (``inputs/formats``) that a scenario never has."""
+
+
+def _looks_like_a_catalog(path, text: str) -> bool:
+    """A CSV header with ``a_km``, TLE lines, or a catalog's extension."""
+    first = next((line.strip() for line in text.splitlines() if line.strip()), "")
+    lines = [line for line in text.splitlines() if line.strip()]
+    tle = sum(1 for line in lines if line[:2] in ("1 ", "2 ") and len(line) >= 60)
+    return (
+        Path(path).suffix.lower() in CATALOG_SUFFIXES
+        or ("," in first and "a_km" in first)
+        or tle >= 2
+    )
 
 
 def toml_value(value) -> str:

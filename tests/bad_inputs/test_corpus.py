@@ -52,6 +52,10 @@ def csv_case(text: str, *expect: str, name="debris.csv", **kw) -> Case:
     return Case({name: text}, ["run", "--catalog", f"{{in}}/{name}"], list(expect), **kw)
 
 
+def strict_csv_case(text: str, *expect: str, name="debris.csv") -> Case:
+    return Case({name: text}, ["run", "--strict", "--catalog", f"{{in}}/{name}"], list(expect))
+
+
 def scenario_case(mission: str, *expect: str, catalog=GOOD_CSV, extra_toml="") -> Case:
     toml = f'[catalog]\npath = "debris.csv"\n[mission]\n{mission}\n{extra_toml}'
     return Case(
@@ -77,15 +81,24 @@ CASES: dict[str, Case] = {
         f"{HEADER}\n1,seven,0,98,10\n", "row 1", "field 'a_km'", "expected"
     ),
     "csv-e-above-one": csv_case(f"{HEADER}\n1,7000,1.5,98,10\n", "field 'e'", "[0, 1)"),
+    "csv-raan-1e308": csv_case(
+        f"{HEADER}\n1,7000,0.001,98,1e308\n", "field 'raan_deg'", "[-36000, 36000]"
+    ),
     "csv-negative-e": csv_case(f"{HEADER}\n1,7000,-0.1,98,10\n", "field 'e'", "[0, 1)"),
     "csv-inclination-200": csv_case(f"{HEADER}\n1,7000,0,200,10\n", "field 'inc_deg'", "[0, 180]"),
     "csv-a-below-earth": csv_case(f"{HEADER}\n1,6000,0,98,10\n", "field 'a_km'", "Earth's radius"),
-    "csv-a-6400-perigee-22km": csv_case(
-        f"{HEADER}\n1,6400,0,98,10\n{ROWS}", "row 1", "field 'a_km'", "perigee", "at least 150 km"
+    # an orbit the model cannot fly among good ones: refused with --strict (without it,
+    # dropped with a warning: tests/inputs/test_whole_catalog.py)
+    "csv-a-6400-perigee-22km": strict_csv_case(
+        f"{HEADER}\n9,6400,0,98,10\n{ROWS}", "row 1", "field 'a_km'", "perigee", "at least 150 km"
     ),
-    "csv-a-1e9": csv_case(f"{HEADER}\n1,1e9,0,98,10\n{ROWS}", "field 'a_km'", "at most 100,000 km"),
-    "csv-eccentric-low-perigee": csv_case(
-        f"{HEADER}\n1,7000,0.5,98,10\n", "field 'a_km'", "perigee"
+    # the filters act first: an orbit beyond LEO or too eccentric is dropped, named, before
+    # any validation (here too few candidates are then left for n = 5)
+    "csv-a-1e9": strict_csv_case(
+        f"{HEADER}\n9,1e9,0,98,10\n{ROWS}", "dropped: 1 above-leo", "exceeds the 3 candidate"
+    ),
+    "csv-eccentric-low-perigee": strict_csv_case(
+        f"{HEADER}\n1,7000,0.5,98,10\n", "no candidate left", "eccentricity"
     ),
     "csv-nan-a": csv_case(f"{HEADER}\n1,nan,0,98,10\n", "field 'a_km'", "expected"),
     "csv-inf-a": csv_case(f"{HEADER}\n1,inf,0,98,10\n", "field 'a_km'", "expected"),
@@ -160,8 +173,55 @@ CASES: dict[str, Case] = {
     "toml-tmax-negative": scenario_case("n = 3\ntmax_days = -1", "tmax_days must be > 0"),
     "toml-tmax-nan": scenario_case("n = 3\ntmax_days = nan", "tmax_days"),
     "toml-tmax-inf": scenario_case("n = 3\ntmax_days = inf", "mission.tmax_days must be a finite"),
+    "toml-drift-band-100-200": scenario_case(
+        "n = 3\ndrift_altitude_km = [100.0, 200.0]", "mission.drift_altitude_km must lie within"
+    ),
+    "toml-drift-band-to-5000": scenario_case(
+        "n = 3\ndrift_altitude_km = [400.0, 5000.0]", "[150, 2000] km"
+    ),
+    "toml-fallback-unknown": scenario_case(
+        "n = 3",
+        "solver.fallback must name MILP backends",
+        "'NOPE'",
+        extra_toml='[solver]\nfallback = ["NOPE"]\n',
+    ),
+    "cli-fallback-unknown": Case(
+        {}, ["run", "--fallback", "FOO"], ["solver.fallback", "'FOO'"], names="command line"
+    ),
     "toml-drift-band-reversed": scenario_case(
         "n = 3\ndrift_altitude_km = [1200.0, 400.0]", "drift_altitude_km"
+    ),
+    # ---- deorbit by the vehicle: a perigee "lowered" upwards would be a negative ΔV
+    "toml-deorbit-perigee-5000": scenario_case(
+        'n = 2\ndeorbit_by = "vehicle"\ndeorbit_perigee_km = 5000.0',
+        "mission.deorbit_perigee_km = 5000 is not below the perigee",
+        "3 candidate debris",
+    ),
+    "toml-deorbit-perigee-above-one": scenario_case(
+        'n = 2\ndeorbit_by = "vehicle"\ndeorbit_perigee_km = 650.0',
+        "deorbit_perigee_km = 650 is not below",
+        "1 candidate debris (1 at 614.9 km)",
+    ),
+    "toml-injection-below-surface": scenario_case(
+        "n = 2\ninjection = [6000.0, 0.0, 98.0, 0.0]", "mission.injection: injection a_km"
+    ),
+    "toml-injection-perigee-below-surface": scenario_case(
+        "n = 2\ninjection = [7000.0, 0.1, 98.0, 0.0]",
+        "mission.injection: injection perigee altitude",
+        "below the Earth's surface",
+    ),
+    "toml-injection-raan-1e308": scenario_case(
+        "n = 2\ninjection = [7000.0, 0.001, 98.0, 1e308]", "injection raan_deg must be an angle in"
+    ),
+    "csv-as-a-scenario": Case(
+        {"debris.csv": GOOD_CSV},
+        ["run", "{in}/debris.csv"],
+        ["invalid TOML", "looks like a debris catalog", "--catalog"],
+    ),
+    "tle-as-a-scenario": Case(
+        {"rb.dat": TLE_1 + TLE_2},
+        ["run", "{in}/rb.dat"],
+        ["invalid TOML", "looks like a debris catalog", "--catalog"],
     ),
     "toml-catalog-missing": Case(
         {"scenario.toml": '[catalog]\npath = "nowhere.csv"\n'},
@@ -206,12 +266,36 @@ CASES: dict[str, Case] = {
         ["not an earlier run folder"],
         names="mine",
     ),
+    "out-run-folder-with-a-file-of-the-user": Case(
+        {"debris.csv": GOOD_CSV, "run/solution.json": "{}", "run/notes.txt": "keep"},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "{in}/run"],
+        ["also holds notes.txt", "did not write"],
+        names="run",
+    ),
     "out-unwritable": Case(
         {"debris.csv": GOOD_CSV, "locked/.keep": ""},
         ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "{in}/locked/run"],
         ["not writable"],
         names="locked",
         skip="root writes anywhere" if os.geteuid() == 0 else None,
+    ),
+    "out-current-folder": Case(
+        {"debris.csv": GOOD_CSV},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "."],
+        ["--out", "is the current folder"],
+        names="--out",
+    ),
+    "out-in-proc": Case(
+        {"debris.csv": GOOD_CSV},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "/proc/sdc_cvx_x"],
+        ["--out", "/proc/sdc_cvx_x.log"],
+        names="/proc/sdc_cvx_x",
+    ),
+    "out-beside-a-log-of-the-user": Case(
+        {"debris.csv": GOOD_CSV, "r.log": "my notes\n"},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "{in}/r"],
+        ["is not a log of sdc_cvx", "never overwrites"],
+        names="r.log",
     ),
     # ---- command-line values
     "cli-n-1": Case({}, ["run", "--n", "1"], ["mission.n must be >= 2"], names="command line"),
@@ -257,6 +341,24 @@ CASES: dict[str, Case] = {
         {"study.toml": STUDY, "done/results.csv": "key\n"},
         ["sweep", "{in}/study.toml", "--out", "{in}/done"],
         ["already holds results.csv", "--resume"],
+        names="done",
+    ),
+    "sweep-into-a-run-folder": Case(
+        {"study.toml": STUDY, "run/solution.json": "{}", "run/legs.csv": "x\n"},
+        ["sweep", "{in}/study.toml", "--out", "{in}/run"],
+        ["--out", "is not a sweep folder"],
+        names="run",
+    ),
+    "sweep-into-a-folder-of-the-user": Case(
+        {"study.toml": STUDY, "mine/notes.txt": "keep"},
+        ["sweep", "{in}/study.toml", "--out", "{in}/mine"],
+        ["--out", "not empty and is not a sweep folder"],
+        names="mine",
+    ),
+    "sweep-refused-resume-leaves-no-lock": Case(
+        {"study.toml": STUDY, "done/results.csv": "key,scenario_sha\nx,abc\n"},
+        ["sweep", "{in}/study.toml", "--out", "{in}/done", "--resume"],
+        ["is not a sweep results table"],
         names="done",
     ),
     "sweep-bad-study": Case(

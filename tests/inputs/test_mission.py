@@ -3,6 +3,8 @@
 import pytest
 
 from sdc_cvx import Mission, MissionError
+from sdc_cvx.inputs.mission import INJECTION_MIN_PERIGEE_KM
+from sdc_cvx.physics.orbits import R_EARTH
 
 
 def test_defaults_are_the_paper_case():
@@ -62,3 +64,49 @@ def test_frozen_and_replace():
     assert m.replace(n=4).n == 4 and m.n == 5
     with pytest.raises(MissionError):
         m.replace(n=0)
+
+
+def test_a_single_string_is_one_debris_id_not_its_characters():
+    assert Mission(must_include="35").must_include == ("35",)
+    assert Mission(exclude="10").exclude == ("10",)
+    assert Mission(must_include=["3", "5"]).must_include == ("3", "5")
+
+
+def test_a_deorbit_perigee_above_a_candidate_perigee_is_refused_before_any_solve():
+    from sdc_cvx import Catalog, solve
+
+    catalog = Catalog.paper_case()
+    perigees = (catalog.a_m * (1 - catalog.e) - R_EARTH) / 1e3
+    for km in (5000.0, float(perigees.min()) + 1.0):
+        mission = Mission(n=3, deorbit_by="vehicle", deorbit_perigee_km=km)
+        with pytest.raises(MissionError, match="deorbit_perigee_km .* is not below the perigee"):
+            mission.check_candidates(catalog)
+        with pytest.raises(MissionError, match="deorbit_perigee_km"):
+            solve(catalog, mission)
+    # the debris below it excluded: accepted; a kit needs no perigee
+    low = [k for k, p in zip(catalog.ids, perigees, strict=True) if p <= perigees.min() + 1.0]
+    Mission(n=3, deorbit_by="vehicle", deorbit_perigee_km=float(perigees.min()) + 1.0,
+            exclude=low).check_candidates(catalog)  # fmt: skip
+    Mission(n=3, deorbit_perigee_km=5000.0).check_candidates(catalog)
+
+
+def test_the_vehicle_deorbit_cost_is_positive_at_every_debris():
+    from sdc_cvx import Catalog
+    from sdc_cvx.planner.sequential import MissionNodes
+
+    catalog = Catalog.paper_case()
+    perigees = (catalog.a_m * (1 - catalog.e) - R_EARTH) / 1e3
+    mission = Mission(n=3, deorbit_by="vehicle", deorbit_perigee_km=float(perigees.min()) - 1.0)
+    mission.check_candidates(catalog)
+    assert (MissionNodes.of(catalog, mission).cost_mps > 0).all()
+
+
+def test_an_injection_orbit_is_checked_like_a_catalog_orbit():
+    from sdc_cvx.inputs.catalog import MIN_PERIGEE_KM
+
+    assert INJECTION_MIN_PERIGEE_KM == MIN_PERIGEE_KM
+    with pytest.raises(MissionError, match="below the Earth's surface"):
+        Mission(injection=(7000.0, 0.1, 98.0, 0.0))
+    with pytest.raises(MissionError, match="raan_deg must be an angle in"):
+        Mission(injection=(7000.0, 0.001, 98.0, 1e308))
+    Mission(injection=(7000.0, 0.001, 98.0, -30.0))

@@ -313,3 +313,9 @@ def test_failed_check_is_an_error_and_leaves_no_point(monkeypatch):
     report = solve_milp(problem, SolverOptions(backend="SCIPY", mip_gap=0.05))
     assert report.status == Status.ERROR and "result check failed" in report.message
     assert report.objective is None and x.value is None
+
+
+def test_an_unknown_fallback_backend_is_refused_when_the_options_are_made():
+    with pytest.raises(ValueError, match="fallback must name MILP backends.*got NOPE"):
+        SolverOptions(fallback=("NOPE",))
+    assert SolverOptions(fallback="highs").fallback == ("HIGHS",)  # one name, not its letters

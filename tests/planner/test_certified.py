@@ -30,3 +30,55 @@ def test_no_arc_leaves_a_barred_start_even_without_a_plan_in_hand():
     starts = arcs.tail[arcs.tail < n]
     assert len(starts) > 0 and np.all(starts == first)
     assert np.isfinite(walk)
+
+
+# ------------------------------------------------------- issue 20, item 9: the setup's clock
+def test_the_cost_tables_report_each_chunk_and_can_be_stopped():
+    from sdc_cvx import Mission
+    from sdc_cvx.inputs.synthetic import sso_catalog
+    from sdc_cvx.network.edges import drift_radius_bounds, node_orbits
+
+    catalog, mission = sso_catalog(12, seed=3), Mission(n=3)
+    orbits = node_orbits(catalog, mission)
+    a_low, a_high = drift_radius_bounds(mission)
+    ii, jj = np.nonzero(~np.eye(12, dtype=bool))
+    seen = []
+    whole = LegCosts.build(orbits.take(ii), orbits.take(jj), a_low, a_high)
+    chunked = LegCosts.build(orbits.take(ii), orbits.take(jj), a_low, a_high, chunk=50,
+                             on_chunk=lambda done, total: seen.append((done, total)))  # fmt: skip
+    assert seen == [(min(k + 50, 132), 132) for k in range(0, 132, 50)]
+    np.testing.assert_array_equal(whole.candidate_cost, chunked.candidate_cost)
+
+
+def test_a_time_limit_that_ends_in_the_setup_stops_it_with_a_clear_failure():
+    import pytest
+
+    from sdc_cvx import Mission, SolverOptions, solve
+    from sdc_cvx.errors import SolverFailure
+    from sdc_cvx.inputs.synthetic import sso_catalog
+
+    catalog = sso_catalog(50, seed=1)  # 2450 edges: two chunks of cost tables
+    with pytest.raises(SolverFailure, match="while building the edge cost tables") as caught:
+        solve(catalog, Mission(n=3), solver=SolverOptions(time_limit_s=1e-6))
+    assert "allow more time" in str(caught.value) and "inf" not in str(caught.value)
+
+
+def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
+    import time
+
+    import pytest
+
+    from sdc_cvx.planner.certified import _OutOfTime, _Search
+
+    lines = []
+    clock = type("Clock", (), {"deadline": time.perf_counter() + 1e3, "say": lines.append})()
+    on_chunk = _Search._setup_clock(clock, every_s=0.0)
+    on_chunk(1, 10**12)  # at this pace the tables need far more than the 1000 s left
+    on_chunk(2, 10**12)
+    assert sum("the edge cost tables alone need about" in line for line in lines) == 1
+    assert any(line.startswith("  cost tables: 0% done (2 of") for line in lines)
+    on_chunk(10**12, 10**12)  # done: the heartbeat's phase moves on to the network
+    assert lines[-1].startswith("  cost tables done (1000000000000 edges")
+    clock.deadline = 0.0
+    with pytest.raises(_OutOfTime, match="3 of 1000000000000 edges"):
+        on_chunk(3, 10**12)

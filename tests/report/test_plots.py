@@ -322,8 +322,56 @@ def test_certified_search_history_shows_the_bound_and_the_plan():
     fig = plot_iterations(certified)
     ax = fig.axes[0]
     assert len(fig.axes) == 1  # no duration axis: the search has no "true duration" per step
-    bound = [line for line in ax.get_lines() if line.get_gid() == "lower-bound"]
-    assert bound and bound[0].get_ydata()[0] == pytest.approx(certified.lower_bound_mps)
-    plan = [line for line in ax.get_lines() if line.get_gid() == "plan"][0]
-    assert plan.get_ydata()[-1] == pytest.approx(certified.total_dv_mps, abs=1e-6)
-    assert "optimal" in ax.get_title()
+    lines = {line.get_gid(): line for line in ax.get_lines()}
+    assert lines["lower-bound"].get_ydata()[-1] == pytest.approx(certified.lower_bound_mps)
+    assert lines["plan"].get_ydata()[-1] == pytest.approx(certified.total_dv_mps, abs=1e-6)
+    assert "optimal" in ax.get_title() and "gap" in ax.get_title()
+    # against elapsed time, every plan and every bound (issue 20, item 10: not one point)
+    assert ax.get_xlabel().startswith("time since the search started")
+    trace = certified.search_trace
+    assert len(trace) >= 2 and list(lines["plan"].get_xdata()[:-1]) == [t for t, *_ in trace]
+    plans = sum(1 for k, (*_, up) in enumerate(trace) if up is not None and (
+        k == 0 or up != trace[k - 1][2]))  # fmt: skip
+    assert len(lines["plans"].get_xdata()) >= plans
+    relaxations = [r for r in certified.iterations if r.dv_linearized_mps is not None]
+    shown = lines["relaxation"].get_xdata() if "relaxation" in lines else []
+    assert len(shown) == len(relaxations)
+    # iterations.csv: the best plan's ΔV beside the best plan's path, not the relaxation's
+    for record in relaxations:
+        assert record.path and "relaxation's path " in record.note
+    if relaxations:
+        assert relaxations[-1].path == certified.path
+    assert any(c.get_gid() == "gap" for c in ax.collections)
+
+
+def _overlap(labels, renderer) -> bool:
+    boxes = [label.get_window_extent(renderer) for label in labels if label.get_text()]
+    return any(a.overlaps(b) for k, a in enumerate(boxes) for b in boxes[k + 1 :])
+
+
+@pytest.mark.parametrize("ids", ["short", "long"])
+def test_cost_figure_without_a_before_says_so_and_its_labels_do_not_collide(solution, ids):
+    """Issue 20, item 10: no "before and after" with only an after; n = 10 and long ids
+    (GTOC9, TLE names) keep their leg labels apart; operations are bars, not a footnote."""
+    name = (lambda k: f"{k + 100}") if ids == "short" else (lambda k: f"DEB-2020-{k:03d}A")
+    legs = tuple(dataclasses.replace(solution.legs[0], from_id=name(k), to_id=name(k + 1),
+                                     dv_mps=50.0 + 10 * k) for k in range(9))  # fmt: skip
+    ops = {"scenario": "vehicle", "per_debris_mps": {leg.to_id: 400.0 for leg in legs},
+           "total_mps": 3600.0}  # fmt: skip
+    total = sum(leg.dv_mps for leg in legs) + 3600.0
+    ten = dataclasses.replace(solution, legs=legs, initial_legs=(), operations=ops,
+                              total_dv_mps=total)  # fmt: skip
+    fig = plot_cost(ten)
+    ax = fig.axes[0]
+    assert "before" not in ax.get_title()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    assert not _overlap(ax.get_xticklabels(), renderer)
+    stacked = [p for p in ax.patches if p.get_gid() == "operations"]
+    assert [p.get_height() for p in stacked] == [400.0] * 9
+    assert [p.get_y() for p in stacked] == pytest.approx([leg.dv_mps for leg in legs])
+    legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    assert f"= {total:.1f} m/s" in legend and "3600.0 m/s operations" in legend

@@ -218,3 +218,147 @@ def test_a_run_without_a_relaxation_row_still_writes_its_folder(solution, tmp_pa
     table = pd.read_csv(tmp_path / "run" / "iterations.csv")
     assert table.empty and {"iteration", "path", "dv_true_mps"} <= set(table.columns)
     assert json.loads((tmp_path / "run" / "solution.json").read_text())["iterations"] == []
+
+
+# ---------------------------------------------------------------- issue 20: files and locks
+def test_the_current_folder_and_its_parents_are_refused(solution, tmp_path, monkeypatch):
+    here = tmp_path / "here"
+    here.mkdir()
+    monkeypatch.chdir(here)
+    assert "is the current folder" in out_folder_problem(".")
+    assert "is the current folder" in out_folder_problem(here)
+    assert "a parent of the current folder" in out_folder_problem("..")
+    with pytest.raises(FileExistsError, match="current folder"):
+        solution.save(".", formats=())
+    assert list(here.iterdir()) == [] and sorted(p.name for p in tmp_path.iterdir()) == ["here"]
+
+
+def test_a_symlinked_folder_is_followed_and_the_link_kept(solution, tmp_path):
+    target = tmp_path / "target"
+    target.mkdir()
+    link = tmp_path / "link"
+    link.symlink_to(target)
+    solution.save(link, formats=())
+    assert link.is_symlink() and (target / "solution.json").exists()
+    solution.save(link, formats=())  # an earlier run folder behind the link: replaced
+    assert link.is_symlink() and (target / "solution.json").exists()
+    assert not list(tmp_path.glob(".*partial"))
+
+
+def test_an_unwritable_place_raises_a_clear_oserror_and_leaves_nothing(solution, tmp_path):
+    with pytest.raises(OSError, match="cannot write the run folder /proc/sdc_cvx_nowhere/run"):
+        solution.save("/proc/sdc_cvx_nowhere/run", formats=())
+    assert not Path("/proc/sdc_cvx_nowhere").exists()
+
+
+def test_a_write_that_fails_midway_leaves_nothing_it_created(solution, tmp_path, monkeypatch):
+    import errno
+
+    from sdc_cvx.report import run_folder
+
+    def full(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(run_folder, "_swap_in", full)
+    with pytest.raises(OSError, match="cannot write the run folder .*No space left") as caught:
+        write_run(tmp_path / "new" / "deeper" / "run", solution, formats=())
+    assert caught.value.errno == errno.ENOSPC
+    assert list(tmp_path.iterdir()) == []  # no stage, and not the parents it made
+
+
+def test_the_live_log_locks_the_folder_and_never_takes_a_file_of_the_user(tmp_path):
+    from sdc_cvx.report.run_folder import (
+        LIVE_LOG_SIGNATURE,
+        FolderBusy,
+        live_log_path,
+        open_live_log,
+    )
+
+    out = tmp_path / "r"
+    assert live_log_path(out) == tmp_path / "r.log"
+    first = open_live_log(out)
+    with pytest.raises(FolderBusy, match="another sdc_cvx run is writing"):
+        open_live_log(out)
+    first.write("step\n")
+    first.close()  # a killed run: its log stays, unlocked, and the next run takes it over
+    assert (tmp_path / "r.log").read_text() == f"{LIVE_LOG_SIGNATURE}\nstep\n"
+    again = open_live_log(out)
+    again.close()
+    assert (tmp_path / "r.log").read_text() == f"{LIVE_LOG_SIGNATURE}\n"
+    for mine in ("my notes\n", ""):
+        (tmp_path / "r.log").write_text(mine)
+        with pytest.raises(FileExistsError, match="is not a log of sdc_cvx"):
+            open_live_log(out)
+        assert (tmp_path / "r.log").read_text() == mine
+
+
+def test_two_saves_into_one_folder_at_once_follow_each_other(solution, tmp_path):
+    import threading
+
+    out = tmp_path / "run"
+    errors = []
+
+    def save():
+        try:
+            solution.save(out, formats=())
+        except Exception as err:  # noqa: BLE001 - collected, asserted below
+            errors.append(err)
+
+    threads = [threading.Thread(target=save) for _ in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert errors == []
+    assert whole_without_figures(out) and not list(tmp_path.glob(".*partial"))
+
+
+def whole_without_figures(folder: Path) -> bool:
+    names = {p.name for p in folder.iterdir()}
+    return names == {"solution.json", "legs.csv", "iterations.csv", "edges.csv"}
+
+
+@pytest.mark.slow
+def test_a_second_run_into_a_busy_folder_is_refused_and_a_kill_is_cleaned_at_the_next_start(
+    tmp_path,
+):
+    out, live = tmp_path / "run", tmp_path / "run.log"
+    env = {"PYTHONPATH": str(REPO)}
+    first = run_cli(out, {**env, "SDC_CVX_PAUSE_BEFORE_SWAP": "60"})
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not list(tmp_path.glob(".run.*.partial/solution.json")):
+        time.sleep(0.1)
+    second = subprocess.run(
+        [sys.executable, "-m", "sdc_cvx", "run", "--n", "3", "--quiet", "--out", str(out)],
+        cwd=REPO, env={**os.environ, **env}, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert second.returncode == 2
+    assert "another sdc_cvx run is writing" in second.stderr and not out.exists()
+    first.send_signal(signal.SIGKILL)
+    first.wait()
+    left = list(tmp_path.glob(".run.*.partial"))
+    assert live.exists() and left  # what the kill left: until the next run starts
+    third = run_cli(out, env)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and third.poll() is None:
+        text = live.read_text() if live.exists() else ""
+        if "Choosing 3 of 11" in text and "writing the run folder" not in text:
+            break  # the third run's own log: it has started and not reached the writing
+        time.sleep(0.05)
+    assert not any(p.exists() for p in left)  # gone as the next run started
+    assert third.wait(timeout=120) == 0 and whole(out) and not live.exists()
+
+
+def test_an_earlier_run_folder_holding_a_file_of_the_user_is_refused(solution, tmp_path):
+    from sdc_cvx.report.plots import FIGURE_NAMES, SUPPORTED_FORMATS
+    from sdc_cvx.report.run_folder import RUN_FOLDER_FILES
+
+    # every file a run folder holds is known (else a rerun would refuse its own folder)
+    assert {f"{n}.{f}" for n in FIGURE_NAMES for f in SUPPORTED_FORMATS} <= RUN_FOLDER_FILES
+    folder = tmp_path / "run"
+    solution.save(folder, formats=("png", "svg", "pdf"), scenario_toml="")
+    assert {p.name for p in folder.iterdir()} <= RUN_FOLDER_FILES
+    (folder / "notes.txt").write_text("mine")
+    with pytest.raises(FileExistsError, match="also holds notes.txt, which sdc_cvx did not"):
+        solution.save(folder, formats=())
+    assert (folder / "notes.txt").read_text() == "mine"

@@ -21,6 +21,7 @@ def test_statuses_keep_the_strings_of_results_csv():
         "iteration_limit",
         "time_limit",
         "stalled",
+        "within_gap",
     )
     assert FAILURE_STATUSES == ("infeasible", "solver_failure", "error")
     assert LOST == "lost" and json.dumps({"status": LOST}) == '{"status": "lost"}'

@@ -26,7 +26,7 @@ from sdc_cvx.study.runner import (
     sweep,
 )
 from sdc_cvx.study.scenario import Scenario, ScenarioError
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, REPO
 
 pytestmark = pytest.mark.slow  # solves many missions (see tests/conftest.py)
 
@@ -179,7 +179,9 @@ def test_results_table_and_files(reference, study_file):
     assert solved["path"].str.count("->").tolist() == [2, 2, 3, 3]
     assert (solved["iterations"] > 0).all() and (solved["backend"] == "HIGHS").all()
     pd.testing.assert_frame_equal(read_results(out), reference)
-    assert (out / "study.toml").read_text() == STUDY
+    copy = (out / "study.toml").read_text()  # self-contained, the original as comments
+    assert "".join(f"# {line}\n" for line in STUDY.splitlines()) in copy
+    assert load_study(out / "study.toml").scenarios == study.scenarios
     for item in study.scenarios:
         folder = out / "scenarios" / item.key
         as_run = Scenario.load(folder / "scenario.toml")
@@ -295,3 +297,93 @@ def test_plot_sweep_draws_dv_against_the_swept_parameter(reference):
     assert ax.get_xlabel() == "mission.n"
     with pytest.raises(KeyError, match="no column 'gap'"):
         plot_sweep(reference, "gap")
+
+
+@pytest.mark.slow
+def test_a_script_without_a_main_guard_is_told_before_any_worker_starts(tmp_path):
+    """Its workers would import the script and start the sweep again (issue 20, item 4)."""
+    (tmp_path / "study.toml").write_text('[grid]\n"mission.n" = [2, 3]\n')
+    unguarded = "import sdc_cvx\nsdc_cvx.sweep('study.toml', 'out', progress=False)\n"
+    guarded = (
+        "from sdc_cvx.study.runner import _check_main_guard\n"
+        "if __name__ == '__main__':\n    _check_main_guard()\n    print('accepted')\n"
+    )
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    for name, text in (("unguarded.py", unguarded), ("guarded.py", guarded)):
+        (tmp_path / name).write_text(text)
+    result = subprocess.run([sys.executable, "unguarded.py"], cwd=tmp_path, env=env,
+                            capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert result.returncode == 1
+    assert "unguarded.py, line 2: the sweep is started at the top level" in result.stderr
+    assert "if __name__ ==" in result.stderr and not (tmp_path / "out").exists()
+    result = subprocess.run([sys.executable, "guarded.py"], cwd=tmp_path, env=env,
+                            capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert result.returncode == 0 and result.stdout == "accepted\n", result.stderr
+
+
+@pytest.mark.slow
+def test_the_study_copied_into_the_folder_resumes_that_sweep(tmp_path, monkeypatch):
+    """Its relative paths pointed beside the original file: the copy is self-contained."""
+    import concurrent.futures as cf
+
+    from sdc_cvx.study.runner import run_study
+    from sdc_cvx.study.study import load_study
+
+    given = tmp_path / "given"
+    given.mkdir()
+    (given / "d.csv").write_text(
+        "id,a_km,e,inc_deg,raan_deg\n1,7000,0.001,98,10\n2,7050,0.001,98,40\n3,7100,0.001,98,70\n"
+    )
+    (given / "base.toml").write_text('[catalog]\npath = "d.csv"\n')
+    (given / "study.toml").write_text('base = "base.toml"\n[grid]\n"mission.n" = [2, 3]\n')
+    out = tmp_path / "out"
+    with cf.ThreadPoolExecutor(1) as pool:
+        first = run_study(load_study(given / "study.toml"), out, executor=pool, progress=False)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    copy = load_study(out / "study.toml")
+    ran = []
+    with cf.ThreadPoolExecutor(1) as pool:
+        again = run_study(copy, out, executor=pool, resume=True, progress=ran.append)
+    assert len(first) == len(again) == 2
+    assert list(again["total_dv_mps"]) == list(first["total_dv_mps"])
+    assert ran and all(p.row is None and p.remaining == 0 for p in ran)  # nothing run again
+    assert '# base = "base.toml"' in (out / "study.toml").read_text()  # the original, kept
+    assert not (out / ".sweep.lock").exists()
+
+
+@pytest.mark.slow
+def test_ctrl_c_on_a_sweep_says_how_to_resume_and_ends_at_once(tmp_path):
+    (tmp_path / "study.toml").write_text('[grid]\n"mission.n" = [3, 9]\n')  # n = 9: minutes
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    sweep = subprocess.Popen(
+        [sys.executable, "-m", "sdc_cvx", "sweep", "study.toml", "--out", "out", "--workers", "1"],
+        cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        start_new_session=True,
+    )  # fmt: skip
+    results = tmp_path / "out" / "results.csv"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and sweep.poll() is None:
+        if results.exists() and "n=3" in results.read_text():
+            break
+        time.sleep(0.2)
+    os.killpg(sweep.pid, signal.SIGINT)  # a terminal's Ctrl-C reaches the whole group
+    _, stderr = sweep.communicate(timeout=60)  # not after the n = 9 solve
+    assert sweep.returncode == 130
+    assert "finish the others with: python -m sdc_cvx sweep study.toml --resume --out out" in stderr
+    assert "Traceback" not in stderr and not (tmp_path / "out" / ".sweep.lock").exists()
+
+
+def test_a_notebook_cell_is_not_taken_for_a_script_without_a_guard(tmp_path):
+    """ipykernel runs a cell as top-level code of __main__ from a file it keeps on disk:
+    no worker imports it, so nothing to refuse (notebooks call sweep() at top level)."""
+    from sdc_cvx.study.runner import _check_main_guard
+
+    cell = tmp_path / "cell.py"
+    cell.write_text("_check_main_guard()\n")
+    code = compile(cell.read_text(), str(cell), "exec")
+    exec(code, {"__name__": "__main__", "_check_main_guard": _check_main_guard})  # no raise
+    with pytest.raises(SweepError, match="cell.py, line 1: the sweep is started"):
+        exec(code, {"__name__": "__main__", "__file__": str(cell),
+                    "_check_main_guard": _check_main_guard})  # fmt: skip
