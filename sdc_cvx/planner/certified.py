@@ -197,7 +197,7 @@ class _Network:
     """Time-expanded network over the current partitions: node ids, arcs and their bounds."""
 
     def __init__(self, nodes: CertifiedNodes, legs_table: LegCosts, edge_from, edge_to,
-                 parts: _Partitions, alive_edges):  # fmt: skip
+                 parts: _Partitions, alive_edges, deadline: float = np.inf):  # fmt: skip
         n = len(nodes.ops_days)
         self.n_debris = n
         # node ids: starts 0..n-1, then the cells of each debris in order
@@ -225,6 +225,9 @@ class _Network:
         edge = np.concatenate(edges) if edges else np.empty(0, dtype=int)
         bound = np.empty(len(edge))
         for part in np.array_split(np.arange(len(edge)), max(1, len(edge) // BOUND_CHUNK)):
+            if time.perf_counter() >= deadline:
+                raise _OutOfTime(f"time limit reached while bounding the {len(edge)} arcs of "
+                                 "a network of date cells")  # fmt: skip
             j = edge_to[edge[part]]  # in parts: the bound's temporaries stay small
             bound[part] = leg_box_bound(
                 legs_table, edge[part], self.node_lo[tail[part]], self.node_hi[tail[part]],
@@ -384,7 +387,8 @@ class _Search:
         alive = path_cost_floor(self.edge_from, self.edge_to, self.edge_floor,
                                 self.nodes.cost_mps, self.nodes.legs,
                                 first=self.nodes.first) <= self.level + 1e-9  # fmt: skip
-        net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive)
+        net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive,
+                       self.deadline)  # fmt: skip
         arcs, network_lower = net.pruned(self.nodes, self.start_allowed, self.level)
         self.prove(min(network_lower, self.upper))
         self.completion = net.completion
@@ -521,106 +525,110 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                                time.perf_counter() - clock, (str(err),),
                                complete=False)  # fmt: skip
     enumerating = np.isfinite(ceiling_mps)
-    for seed in seeds:
-        if len(seed) == nodes.legs + 1:
-            search.try_path(seed, "seed")
-    # cheap plans first, from a beam search over the first network: they prune the rest
-    _, arcs, _ = search.network()
-    for _, path, _ in search.candidates(arcs, SEED_PATHS):
-        search.try_path(path, "beam")
     rows: list[dict] = []
     step_limit, milp_solves = MILP_STEP_S, 0
-    for iteration in range(1, max_iterations + 1):
-        started = time.perf_counter()
-        net, arcs, network_lower = search.network()
-        if search.proven >= stop_above_mps:
-            break
-        beam = []  # the uncut beam paths of the current arcs, cheapest first
-        for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
-            if len(arcs) == 0 or time.perf_counter() >= deadline or stop():
-                break
-            beam = search.candidates(arcs, CANDIDATES)
-            open_paths = search.open_paths(beam, gap_rel)
-            if not open_paths:
-                break
-            for _, path, _ in open_paths if enumerating else open_paths[:1]:
-                search.try_path(path, "network")
-            _refine(search.parts, net, arcs, np.concatenate([rows for *_, rows in open_paths]),
-                    split_pieces)  # fmt: skip
-            search.say(f"  refine the cells of {len(open_paths)} paths whose bounds (from "
-                       f"{open_paths[0][0]:.2f} m/s) are under the plan's "
-                       f"{search.upper:.2f} m/s: {search.parts.count()} cells")  # fmt: skip
+    try:  # a network of date cells bounded past the time limit ends the search
+        for seed in seeds:
+            if len(seed) == nodes.legs + 1:
+                search.try_path(seed, "seed")
+        # cheap plans first, from a beam search over the first network: they prune the rest
+        _, arcs, _ = search.network()
+        for _, path, _ in search.candidates(arcs, SEED_PATHS):
+            search.try_path(path, "beam")
+        for iteration in range(1, max_iterations + 1):
+            started = time.perf_counter()
             net, arcs, network_lower = search.network()
-            beam = []
-        if len(arcs) == 0 or not np.isfinite(network_lower):
-            search.prove(np.inf)  # no path of L legs at all, or none below the plan held
-            break
-        remaining = deadline - time.perf_counter()
-        if stop() and np.isfinite(search.upper):
-            search.notes.append("interrupted: the best plan so far")
-            search.limited = True
-            break
-        if remaining <= 0:
-            search.notes.append(f"time limit ({time_limit_s:g} s) reached")
-            search.limited = True
-            break
-        start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
-        search.say(
-            f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
-            f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"
-        )
-        result = solve_relaxation(
-            arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
-            solver=_with_limit(solver, min(remaining, step_limit)),
-            must_visit=nodes.must_visit, cuts=list(search.settled),
-            solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
-        milp_solves += 1
-        search.notes += [m for m in result.report.fallbacks if m not in search.notes]
-        stopped = result.report.status.value in ("time_limit", "no_solution")
-        out_of_time = time.perf_counter() >= deadline
-        if stopped and not out_of_time:
-            step_limit *= 2  # a MILP stopped at its step limit: its dual bound still counts
-        if result.lower_mps is None:
-            if stopped and not out_of_time:
-                continue
-            search.notes.append(f"relaxation MILP failed: {result.report.message}")
-            search.limited = True
-            break
-        if result.path and np.isfinite(result.lower_mps):
-            search.try_path(result.path, "relaxation")
-        lower = search.prove(result.lower_mps)
-        row = dict(iteration=iteration, path=result.path, plan_path=search.path,
-                   relaxation_mps=result.lower_mps,
-                   lower_mps=lower, upper_mps=search.upper, arcs=len(arcs),
-                   cells=search.parts.count(), nodes=result.report.nodes,
-                   solve_seconds=result.report.solve_seconds, backend=result.report.backend,
-                   cvxpy_seconds=result.report.overhead_seconds,
-                   seconds=time.perf_counter() - started,
-                   elapsed=time.perf_counter() - clock)  # fmt: skip
-        rows.append(row)
-        if on_iteration is not None:
-            on_iteration(row)
-        search.say(f"  bound {lower:.2f}, plan {search.upper:.2f} m/s ({len(arcs)} arcs, "
-                   f"{search.parts.count()} cells, MILP {result.report.solve_seconds:.1f} s, "
-                   f"{result.report.nodes} nodes)")  # fmt: skip
-        if enumerating:
-            if result.lower_mps > ceiling_mps:  # every path under the ceiling is settled
+            if search.proven >= stop_above_mps:
                 break
-        elif not np.isfinite(result.lower_mps) or search.within(lower, gap_rel):
-            break
-        if lower >= stop_above_mps:
-            break
-        if stopped and out_of_time:
-            search.notes.append(f"time limit ({time_limit_s:g} s) reached during a MILP")
+            beam = []  # the uncut beam paths of the current arcs, cheapest first
+            for _ in range(MAX_REFINE_ROUNDS):  # cheap first: cells along the beam's open paths
+                if len(arcs) == 0 or time.perf_counter() >= deadline or stop():
+                    break
+                beam = search.candidates(arcs, CANDIDATES)
+                open_paths = search.open_paths(beam, gap_rel)
+                if not open_paths:
+                    break
+                for _, path, _ in open_paths if enumerating else open_paths[:1]:
+                    search.try_path(path, "network")
+                _refine(search.parts, net, arcs, np.concatenate([rows for *_, rows in open_paths]),
+                        split_pieces)  # fmt: skip
+                search.say(f"  refine the cells of {len(open_paths)} paths whose bounds (from "
+                           f"{open_paths[0][0]:.2f} m/s) are under the plan's "
+                           f"{search.upper:.2f} m/s: {search.parts.count()} cells")  # fmt: skip
+                net, arcs, network_lower = search.network()
+                beam = []
+            if len(arcs) == 0 or not np.isfinite(network_lower):
+                search.prove(np.inf)  # no path of L legs at all, or none below the plan held
+                break
+            remaining = deadline - time.perf_counter()
+            if stop() and np.isfinite(search.upper):
+                search.notes.append("interrupted: the best plan so far")
+                search.limited = True
+                break
+            if remaining <= 0:
+                search.notes.append(f"time limit ({time_limit_s:g} s) reached")
+                search.limited = True
+                break
+            start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
+            search.say(
+                f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
+                f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"
+            )
+            result = solve_relaxation(
+                arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
+                solver=_with_limit(solver, min(remaining, step_limit)),
+                must_visit=nodes.must_visit, cuts=list(search.settled),
+                solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
+            milp_solves += 1
+            search.notes += [m for m in result.report.fallbacks if m not in search.notes]
+            stopped = result.report.status.value in ("time_limit", "no_solution")
+            out_of_time = time.perf_counter() >= deadline
+            if stopped and not out_of_time:
+                step_limit *= 2  # a MILP stopped at its step limit: its dual bound still counts
+            if result.lower_mps is None:
+                if stopped and not out_of_time:
+                    continue
+                search.notes.append(f"relaxation MILP failed: {result.report.message}")
+                search.limited = True
+                break
+            if result.path and np.isfinite(result.lower_mps):
+                search.try_path(result.path, "relaxation")
+            lower = search.prove(result.lower_mps)
+            row = dict(iteration=iteration, path=result.path, plan_path=search.path,
+                       relaxation_mps=result.lower_mps,
+                       lower_mps=lower, upper_mps=search.upper, arcs=len(arcs),
+                       cells=search.parts.count(), nodes=result.report.nodes,
+                       solve_seconds=result.report.solve_seconds, backend=result.report.backend,
+                       cvxpy_seconds=result.report.overhead_seconds,
+                       seconds=time.perf_counter() - started,
+                       elapsed=time.perf_counter() - clock)  # fmt: skip
+            rows.append(row)
+            if on_iteration is not None:
+                on_iteration(row)
+            search.say(f"  bound {lower:.2f}, plan {search.upper:.2f} m/s ({len(arcs)} arcs, "
+                       f"{search.parts.count()} cells, MILP {result.report.solve_seconds:.1f} s, "
+                       f"{result.report.nodes} nodes)")  # fmt: skip
+            if enumerating:
+                if result.lower_mps > ceiling_mps:  # every path under the ceiling is settled
+                    break
+            elif not np.isfinite(result.lower_mps) or search.within(lower, gap_rel):
+                break
+            if lower >= stop_above_mps:
+                break
+            if stopped and out_of_time:
+                search.notes.append(f"time limit ({time_limit_s:g} s) reached during a MILP")
+                search.limited = True
+                break
+            if stop() and np.isfinite(search.upper):
+                search.notes.append("interrupted: the best plan so far")
+                search.limited = True
+                break
+            _refine(search.parts, net, arcs, result.arcs, split_pieces)
+        else:
+            search.notes.append(f"iteration limit ({max_iterations}) reached")
             search.limited = True
-            break
-        if stop() and np.isfinite(search.upper):
-            search.notes.append("interrupted: the best plan so far")
-            search.limited = True
-            break
-        _refine(search.parts, net, arcs, result.arcs, split_pieces)
-    else:
-        search.notes.append(f"iteration limit ({max_iterations}) reached")
+    except _OutOfTime as err:
+        search.notes.append(str(err))
         search.limited = True
     status = search.status(gap_rel)
     return CertifiedResult(search.path, search.schedule, search.upper,
