@@ -71,6 +71,7 @@ def main() -> None:
     parser.add_argument("--dask", action="store_true", help="also on a Dask LocalCluster")
     args = parser.parse_args()
     import numpy
+
     import sdc_cvx  # noqa: F401
 
     print(f"machine: {platform.machine()}, {os.cpu_count()} cores, load "

@@ -70,7 +70,7 @@ def check(seed: int) -> str:
     right = (sol.certified and sol.lower_bound_mps <= best.dv_mps + 1e-3
              and sol.total_dv_mps <= best.dv_mps * 1.001 + 1e-3
              and sol.total_dv_mps >= best.dv_mps - GRID_TOL_MPS * len(ns))  # fmt: skip
-    for day, n, limit, mission in zip(days, ns, tmax, sol.missions, strict=True):
+    for day, limit, mission in zip(days, tmax, sol.missions, strict=True):
         try:
             solver_plan_checked(mission, advanced(catalog, day), limit, rule)
         except AssertionError:
