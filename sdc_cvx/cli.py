@@ -65,6 +65,22 @@ def exit_code(err: SdcError) -> int:
     return INPUT_ERROR
 
 
+def interrupted_exit(message: str):
+    """Ctrl-C with worker processes about: print ``message`` and end at once (exit 130).
+
+    ``sys.exit`` would run the interpreter's exit hooks, among them the process pool's,
+    which joins its manager thread; after the workers were terminated that join can wait
+    without end (seen in about half of the full test runs).  The workers die with this
+    process (``study.executors``), and every file was written atomically.
+    """
+    import os
+
+    click.echo(f"error: {message}", err=True)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(INTERRUPTED)
+
+
 def fail(message: str, code: int = INPUT_ERROR):
     """Print ``message`` to stderr and exit with ``code`` (no traceback)."""
     click.echo(f"error: {message}", err=True)
@@ -854,9 +870,9 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
              + (f" ({err.filename})" if err.filename else "")
              + f"; finish later with --resume --out {folder}", code)  # fmt: skip
     except KeyboardInterrupt:
-        fail(f"interrupted: the scenarios finished so far are in {folder}/results.csv; "
-             f"finish the others with: python -m sdc_cvx sweep {study_file} --resume "
-             f"--out {folder}", INTERRUPTED)  # fmt: skip
+        interrupted_exit(f"interrupted: the scenarios finished so far are in "
+                         f"{folder}/results.csv; finish the others with: python -m sdc_cvx "
+                         f"sweep {study_file} --resume --out {folder}")  # fmt: skip
     done = results["status"].isin(SOLVED_STATUSES)
     click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
                f"{folder}/results.csv")  # fmt: skip
@@ -965,7 +981,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
             fail(f"infeasible campaign: {err} ({folder}/campaign.json)", exit_code(err))
         except KeyboardInterrupt:
             kept = f" (progress in {live_log})" if live_log is not None else ""
-            fail(f"interrupted: nothing written{kept}", INTERRUPTED)
+            steps.__exit__(None, None, None)  # the log closed before the hard exit
+            interrupted_exit(f"interrupted: nothing written{kept}")
         except (SolverFailure, SweepError) as err:
             kept = f" (progress in {live_log})" if live_log is not None else ""
             fail(f"solver failure: {err}{kept}", exit_code(err))
