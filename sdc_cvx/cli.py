@@ -68,10 +68,9 @@ def exit_code(err: SdcError) -> int:
 def interrupted_exit(message: str):
     """Ctrl-C with worker processes about: print ``message`` and end at once (exit 130).
 
-    ``sys.exit`` would run the interpreter's exit hooks, among them the process pool's,
-    which joins its manager thread; after the workers were terminated that join can wait
-    without end (seen in about half of the full test runs).  The workers die with this
-    process (``study.executors``), and every file was written atomically.
+    The workers were terminated and die with this process anyway (``study.executors``),
+    and every file was written atomically: the interpreter's exit hooks (the process
+    pool's joins its manager thread) have nothing left to do but wait.
     """
     import os
 
@@ -649,6 +648,9 @@ def interruptible(steps: RunProgress, method: str):
         steps.say("interrupted: stopping at the next step with the best plan so far and its "
                   "gap (Ctrl-C again to stop at once, writing nothing)")  # fmt: skip
 
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:  # started to ignore Ctrl-C (a
+        yield asked.is_set  # script's background job): it stays ignored, as for sweep
+        return
     try:
         previous = signal.signal(signal.SIGINT, on_sigint)
     except ValueError:  # not the main thread: Ctrl-C keeps its usual meaning

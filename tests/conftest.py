@@ -28,6 +28,19 @@ SHARED_DATA = REPO.parent / "shared" / "data"
 (docs/design.md §8)."""
 
 
+def as_terminal_job() -> None:
+    """``preexec_fn`` for a command a test then interrupts: Ctrl-C as a terminal's foreground
+    job has it (``SIG_DFL``), whatever the test runner inherited.
+
+    A runner started in the background of a script ignores SIGINT, its children inherit
+    that, and Python then installs no KeyboardInterrupt handler: the command would rightly
+    stay deaf to the test's Ctrl-C (why the sweep's Ctrl-C test once hung in CI-like runs).
+    """
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def shared_file(relative: str) -> Path:
     """``SHARED_DATA / relative``, or skip the test saying which file is missing."""
     path = SHARED_DATA / relative

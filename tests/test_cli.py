@@ -18,7 +18,7 @@ from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.cli import main
 from sdc_cvx.inputs.formats import read_gtoc9
 from sdc_cvx.study.scenario import Selection, load
-from tests.conftest import EXAMPLES, PAPER_CSV, REPO, SHARED_DATA
+from tests.conftest import EXAMPLES, PAPER_CSV, REPO, SHARED_DATA, as_terminal_job
 
 GTOC9 = SHARED_DATA / "gtoc9" / "debris_data.txt"
 
@@ -467,7 +467,8 @@ def test_ctrl_c_during_run_keeps_the_best_plan_with_its_gap(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(REPO)}
     run = subprocess.Popen([sys.executable, "-m", "sdc_cvx", "run", "--n", "6", "--quiet",
                             "--out", str(out)], cwd=REPO, env=env, stdout=subprocess.PIPE,
-                           stderr=subprocess.PIPE, text=True)  # fmt: skip
+                           stderr=subprocess.PIPE, text=True,
+                           preexec_fn=as_terminal_job)  # fmt: skip
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and run.poll() is None:
         if live.exists() and " plan " in live.read_text():  # a plan is held

@@ -26,7 +26,7 @@ from sdc_cvx.study.runner import (
     sweep,
 )
 from sdc_cvx.study.scenario import Scenario, ScenarioError
-from tests.conftest import EXAMPLES, REPO
+from tests.conftest import EXAMPLES, REPO, as_terminal_job
 
 pytestmark = pytest.mark.slow  # solves many missions (see tests/conftest.py)
 
@@ -354,18 +354,13 @@ def test_the_study_copied_into_the_folder_resumes_that_sweep(tmp_path, monkeypat
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(
-    os.environ.get("CI") == "true",
-    reason="open gap (issue 20.8): in full runs of the suite the sweep sometimes does not end "
-    "within 60 s of a Ctrl-C (2 of 3 runs; never when run alone); run it locally",
-)
 def test_ctrl_c_on_a_sweep_says_how_to_resume_and_ends_at_once(tmp_path):
     (tmp_path / "study.toml").write_text('[grid]\n"mission.n" = [3, 9]\n')  # n = 9: minutes
     env = {**os.environ, "PYTHONPATH": str(REPO)}
     sweep = subprocess.Popen(
         [sys.executable, "-m", "sdc_cvx", "sweep", "study.toml", "--out", "out", "--workers", "1"],
         cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-        start_new_session=True,
+        start_new_session=True, preexec_fn=as_terminal_job,
     )  # fmt: skip
     results = tmp_path / "out" / "results.csv"
     deadline = time.monotonic() + 120
