@@ -125,11 +125,13 @@ class LegCosts:
         value, argmin : ndarray
             The minimum and a radius [m] where it is reached (``nan`` if empty).
         """
-        e, c, lo, hi = np.broadcast_arrays(np.asarray(e), np.asarray(c), lo, hi)
+        e, c = np.asarray(e), np.asarray(c)  # not broadcast: an edge's constants once
+        shape = np.broadcast_shapes(e.shape, c.shape, np.shape(lo), np.shape(hi))
+        lo, hi = np.broadcast_to(lo, shape), np.broadcast_to(hi, shape)
         empty = ~(lo <= hi)
         lo_s, hi_s = np.where(empty, self.a_low, lo), np.where(empty, self.a_low, hi)
         f_lo, f_hi = self.cost(e, c, lo_s), self.cost(e, c, hi_s)
-        points = self.candidates[e, c]  # (..., K)
+        points = np.broadcast_to(self.candidates[e, c], (*shape, self.candidates.shape[-1]))
         inside = (points >= lo_s[..., None]) & (points <= hi_s[..., None])
         f_in = np.where(inside, self.candidate_cost[e, c], np.inf)
         k = np.argmin(f_in, axis=-1)
@@ -265,11 +267,12 @@ def leg_cost_at(legs: LegCosts, e, t, t_arrive, *, rule: str, j2: float, t_min: 
         for c in allowed_choices(legs, e, side, rule):
             zero = closed & (duration == 0.0)
             lo, hi = radius_interval(legs, e, c, rate, rate, j2=j2)
-            # a zero-length leg: any drift radius on this side of the asymptote (its rate
-            # at least the target's for side +1, at most for side -1: Table 3's pairing)
-            side_lo, side_hi = (rate_j, np.inf) if side > 0 else (-np.inf, rate_j)
-            z_lo, z_hi = radius_interval(legs, e, c, side_lo, side_hi, j2=j2)
-            lo, hi = np.where(zero, z_lo, lo), np.where(zero, z_hi, hi)
+            if zero.any():
+                # a zero-length leg: any drift radius on this side of the asymptote (its rate
+                # at least the target's for side +1, at most for side -1: Table 3's pairing)
+                side_lo, side_hi = (rate_j, np.inf) if side > 0 else (-np.inf, rate_j)
+                z_lo, z_hi = radius_interval(legs, e, c, side_lo, side_hi, j2=j2)
+                lo, hi = np.where(zero, z_lo, lo), np.where(zero, z_hi, hi)
             value, a = legs.minimum_on(e, c, lo, hi)
             value = np.where(ok & ((duration > 0) | zero), value, np.inf)
             better = value < best
@@ -305,10 +308,9 @@ def leg_box_bound(legs: LegCosts, e, t1, t2, t3, t4, *, rule: str, j2: float,
     ndarray
         The bound [m/s], shaped like the broadcast inputs.
     """
-    e, t1, t2, t3, t4 = np.broadcast_arrays(
-        np.asarray(e), *(np.asarray(v, float) for v in (t1, t2, t3, t4))
-    )
-    best = np.full(e.shape, np.inf)
+    e = np.asarray(e)  # not broadcast: an edge's constants are computed once
+    t1, t2, t3, t4 = np.broadcast_arrays(*(np.asarray(v, float) for v in (t1, t2, t3, t4)))
+    best = np.full(np.broadcast_shapes(e.shape, t1.shape), np.inf)
     rate_rel_o = _rates_per_day(legs.target)[e] - _rates_per_day(legs.origin)[e]
     rate_j = _rates_per_day(legs.target)[e]
     gap0 = legs.target.raan[e] - legs.origin.raan[e]
@@ -319,7 +321,7 @@ def leg_box_bound(legs: LegCosts, e, t1, t2, t3, t4, *, rule: str, j2: float,
         signed1, signed2 = side * g1, side * g2
         k_first = np.floor(np.minimum(signed1, signed2) / TWO_PI)
         k_last = np.floor(np.maximum(signed1, signed2) / TWO_PI)
-        pieces = int(np.max(k_last - k_first)) + 1 if e.size else 0
+        pieces = int(np.max(k_last - k_first)) + 1 if best.size else 0
         for p in range(pieces):
             k = k_first + p
             valid = k <= k_last
@@ -353,25 +355,25 @@ def _ratio_range(gap_on_piece, pa, pb, t3, t4, t_min):
     box corners that satisfy the cut and the cut line's crossings with the box edges.
     A vertex with t' = t gives +inf (or the whole range [0, inf) if the gap is 0 there).
     """
-    cands_t, cands_tp = [], []
-    for t in (pa, pb):
-        for tp in (t3, t4):
-            cands_t.append(t)
-            cands_tp.append(tp)
-    # the cut line t' = t + t_min crossing the four box edges
-    cands_t += [pa, pb, t3 - t_min, t4 - t_min]
-    cands_tp += [pa + t_min, pb + t_min, t3, t4]
-    t = np.stack(np.broadcast_arrays(*cands_t))
-    tp = np.stack(np.broadcast_arrays(*cands_tp))
-    tol = 1e-12 * np.maximum(1.0, np.abs(tp))
-    inside = ((t >= pa - tol) & (t <= pb + tol) & (tp >= t3 - tol) & (tp <= t4 + tol)
-              & (tp - t >= t_min - tol))  # fmt: skip
-    gap = np.maximum(gap_on_piece(np.clip(t, pa, pb)), 0.0)
-    denom = tp - t
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(denom > 0, gap / np.maximum(denom, 1e-300), np.inf)
-    at_zero = denom <= 0
-    low_vals = np.where(inside, np.where(at_zero & (gap <= 0), 0.0, ratio), np.inf)
-    high_vals = np.where(inside, ratio, -np.inf)
-    feasible = np.any(inside, axis=0)
-    return np.min(low_vals, axis=0), np.max(high_vals, axis=0), feasible
+    # the vertices' departure dates (the box's two, and the cut line's at t3 and t4), and
+    # the gap at each, once
+    starts = (pa, pb, t3 - t_min, t4 - t_min)
+    gaps = [np.maximum(gap_on_piece(np.clip(t, pa, pb)), 0.0) for t in starts]
+    # the box corners, then the cut line t' = t + t_min crossing the four box edges
+    vertices = ((0, t3), (0, t4), (1, t3), (1, t4), (0, pa + t_min), (1, pb + t_min),
+                (2, t3), (3, t4))  # fmt: skip
+    low, high = np.inf, -np.inf
+    feasible = False
+    for start, tp in vertices:
+        t, gap = starts[start], gaps[start]
+        tol = 1e-12 * np.maximum(1.0, np.abs(tp))
+        inside = ((t >= pa - tol) & (t <= pb + tol) & (tp >= t3 - tol) & (tp <= t4 + tol)
+                  & (tp - t >= t_min - tol))  # fmt: skip
+        denom = tp - t
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(denom > 0, gap / np.maximum(denom, 1e-300), np.inf)
+        low = np.minimum(low, np.where(inside, np.where((denom <= 0) & (gap <= 0), 0.0, ratio),
+                                       np.inf))  # fmt: skip
+        high = np.maximum(high, np.where(inside, ratio, -np.inf))
+        feasible = feasible | inside
+    return low, high, feasible

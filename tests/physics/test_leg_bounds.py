@@ -68,6 +68,30 @@ def test_box_bound_never_exceeds_a_true_leg_inside_the_box(table, rule, t_min):
     assert np.all(point <= cost + 1e-9)
 
 
+@pytest.mark.parametrize("rule", ["table3", "free"])
+@pytest.mark.parametrize("t_min", [0.0, 5.0])
+def test_one_edge_over_many_boxes_is_that_edge_repeated_per_box(table, rule, t_min):
+    """A scalar edge (the fixed path's call: its constants computed once) bounds each box
+    exactly as the edge given once per box (the certified network's call)."""
+    _, i, _, legs = table
+    rng = np.random.default_rng(7)
+    finite = 0
+    for e in rng.integers(0, len(i), 6):
+        t1, t3 = rng.uniform(0.0, 300.0, 2000), rng.uniform(0.0, 365.0, 2000)
+        t2, t4 = t1 + rng.exponential(10.0, 2000), t3 + rng.exponential(10.0, 2000)
+        scalar = leg_box_bound(legs, e, t1, t2, t3, t4, rule=rule, j2=J2, t_min=t_min)
+        repeated = leg_box_bound(legs, np.full(2000, e), t1, t2, t3, t4, rule=rule, j2=J2,
+                                 t_min=t_min)  # fmt: skip
+        np.testing.assert_array_equal(scalar, repeated)
+        finite += np.isfinite(scalar).sum()
+        cost, a, *_ = leg_cost_at(legs, e, t1, t3, rule=rule, j2=J2, t_min=t_min)
+        cost_r, a_r, *_ = leg_cost_at(legs, np.full(2000, e), t1, t3, rule=rule, j2=J2,
+                                      t_min=t_min)  # fmt: skip
+        np.testing.assert_array_equal(cost, cost_r)
+        np.testing.assert_array_equal(a, a_r)
+    assert finite > 500
+
+
 def test_cost_at_dates_reproduces_the_transfer_physics(table):
     """leg_cost_at's drift orbit, flown from the departure date, arrives on the date asked."""
     orbits, i, j, legs = table
