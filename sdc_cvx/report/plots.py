@@ -283,7 +283,7 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
     tmax = solution.mission.tmax_days
     ax.axvline(tmax, color=_LIMIT_COLOR, linestyle=":", linewidth=1.2, zorder=2)
     ax.annotate(
-        f"T$_{{max}}$ = {tmax:g} d",
+        f"T\u2098\u2090\u2093 = {tmax:g} d",
         xy=(tmax, 1.0),
         xycoords=ax.get_xaxis_transform(),
         xytext=(-3, -3),
@@ -409,7 +409,7 @@ def plot_raan(solution: Solution, catalog: Catalog) -> Figure:
     end = max(_end_day(solution), 1.0)
     ax.set_xlim(-0.015 * end, end * 1.015)
     ax.set_xlabel("mission time [days]", fontsize=_LABEL_SIZE)
-    ax.set_ylabel("\u03a9$_{vehicle}$ \u2212 \u03a9$_{target}$ [deg]", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("\u03a9 vehicle \u2212 \u03a9 target [deg]", fontsize=_LABEL_SIZE)
     ax.set_title("RAAN correction on the drift orbits (paper Fig. 18)", fontsize=_TITLE_SIZE)
     ax.grid(True, linewidth=0.4, alpha=0.5)
     if solution.legs:
@@ -684,7 +684,7 @@ def plot_iterations(solution: Solution) -> Figure:
             color=_LIMIT_COLOR,
             linestyle=":",
             linewidth=1.2,
-            label=f"T$_{{max}}$ = {tmax:g} d",
+            label=f"T\u2098\u2090\u2093 = {tmax:g} d",
             gid="tmax",
         )
     )
