@@ -7,17 +7,17 @@ command, here with ``--out`` in a temporary folder) within twice the time a fres
 interpreter takes to ``import cvxpy, pandas, scipy``.  Both are timed in the same run, as
 fresh subprocesses, alternately (so a change of the machine's load falls on both), after
 one untimed pair that warms the disk cache; the medians of ``--repeat`` are printed with
-their ratio, after a header naming the machine (CPU, cores, load, versions).
+their ratio (and the CPU time's, which a loaded machine disturbs less), after a header
+naming the machine (CPU, cores, load, versions).
 
-Then where the run's time goes, from two more runs:
+Then where the run's time goes, from three more runs:
 
 - ``python -X importtime``: the modules the run imports beyond the bare import, by
   top-level package (their own import time, summed);
-- cProfile, on the run's work once its modules are imported: the search, its
-  fixed-path schedules and relaxation MILPs, the pre-optimised edge table
-  (``edges.csv``), the run folder and its figures.  The profiler slows Python code more
-  than compiled code: its seconds are longer than the run's, its shares are what
-  carries over.
+- the run once its modules are imported, with a clock around the functions of its
+  phases: the search, its fixed-path schedules and relaxation MILPs, the pre-optimised
+  edge table (``edges.csv``), the run folder and its figures.  (A profiler would slow
+  matplotlib's Python more than the search's NumPy and misstate the shares.)
 
 ``benchmarks/results/end_to_end.txt`` is one such output (a shared 2-core machine).
 """
@@ -27,8 +27,8 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import pstats
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -45,13 +45,13 @@ from readme_examples import machine  # noqa: E402
 ROOT = HERE.parent
 BARE = ["-c", "import cvxpy, pandas, scipy"]
 RUN = ["-m", "sdc_cvx", "run"]  # README's first command; --out is added
-PHASES = (  # label, module file, function: cumulative time under cProfile
-    ("search (planner.api.solve)", "planner/api.py", "solve"),
-    ("  fixed-path schedules", "planner/fixed_path.py", "solve_path"),
-    ("  relaxation MILPs", "planner/relaxation.py", "solve_relaxation"),
-    ("edges.csv pre-optimisation", "network/edges.py", "preoptimize"),
-    ("run folder", "report/run_folder.py", "write_run"),
-    ("  figures", "report/plots.py", "save_figures"),
+PHASES = (  # label, and the function timed, named where its caller looks it up
+    ("search (planner.api.solve)", "sdc_cvx.planner.api", "solve"),
+    ("  fixed-path schedules", "sdc_cvx.planner.certified", "solve_path"),
+    ("  relaxation MILPs", "sdc_cvx.planner.certified", "solve_relaxation"),
+    ("edges.csv pre-optimisation", "sdc_cvx.network.edges", "preoptimize"),
+    ("run folder (write_run)", "sdc_cvx.report.run_folder", "write_run"),
+    ("  figures", "sdc_cvx.report.plots", "save_figures"),
 )
 
 
@@ -62,11 +62,17 @@ def python(args: list[str], **kwargs) -> subprocess.CompletedProcess:
                           text=True, check=True, **kwargs)  # fmt: skip
 
 
-def timed(args: list[str]) -> float:
-    """Wall-clock seconds of ``python args``."""
-    start = time.perf_counter()
+def timed(args: list[str]) -> tuple[float, float]:
+    """Wall-clock and CPU (user + system) seconds of ``python args``."""
+    before, start = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
     python(args)
-    return time.perf_counter() - start
+    wall, after = time.perf_counter() - start, resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+
+
+def medians(times: list[tuple[float, float]]) -> tuple[float, float]:
+    """Median wall-clock and median CPU seconds."""
+    return statistics.median(w for w, _ in times), statistics.median(c for _, c in times)
 
 
 def run_args(folder: str) -> list[str]:
@@ -98,31 +104,58 @@ def import_lines(folder: str) -> list[str]:
     ]
 
 
-PROFILE = """
-import cProfile, sys
-import sdc_cvx.cli, sdc_cvx.network.edges, sdc_cvx.planner.api, sdc_cvx.report.plots
-cProfile.run("sdc_cvx.cli.main(sys.argv[2:])", sys.argv[1])
+TIMERS = """
+import importlib, json, sys, time
+
+import sdc_cvx.cli
+
+spent = {}
+
+
+def timer(label, owner, name):
+    inner = getattr(owner, name)
+
+    def timed(*args, **kwargs):
+        start = time.perf_counter()
+        try:
+            return inner(*args, **kwargs)
+        finally:
+            calls, seconds = spent.get(label, (0, 0.0))
+            spent[label] = (calls + 1, seconds + time.perf_counter() - start)
+
+    setattr(owner, name, timed)
+
+
+for label, module, name in json.loads(sys.argv[2]):
+    owner = importlib.import_module(module)  # imported here: the run's imports are not timed
+    if hasattr(owner, name):
+        timer(label, owner, name)
+start = time.perf_counter()
+try:
+    sdc_cvx.cli.main(sys.argv[3:])
+except SystemExit as stop:
+    if stop.code:
+        raise
+spent["run"] = (1, time.perf_counter() - start)
+with open(sys.argv[1], "w") as out:
+    json.dump(spent, out)
 """
-"""The run's work after its imports, under cProfile: ``python -c PROFILE STATS run ...``."""
+"""``python -c TIMERS OUT.json PHASES run ...``: the run with each phase's function wrapped
+in a clock, where its caller looks it up."""
 
 
-def profile_lines(folder: str) -> list[str]:
-    """Cumulative time of the run's phases, after its imports, under cProfile."""
-    stats_file = f"{folder}/run.prof"
-    python(["-c", PROFILE, stats_file, *run_args(folder)[2:]])
-    stats = pstats.Stats(stats_file).stats  # (file, line, name) -> (cc, nc, tt, ct, callers)
-
-    def cumulative(file: str, name: str) -> tuple[int, float]:
-        found = [(entry[1], entry[3]) for (path, _, function), entry in stats.items()
-                 if path.replace(os.sep, "/").endswith(file) and function == name]  # fmt: skip
-        return sum(n for n, _ in found), sum(t for _, t in found)
-
-    _, total = cumulative("sdc_cvx/cli.py", "run")
-    lines = [f"the run after its imports, under cProfile: {total:.2f} s"]
-    rows = [(label, *cumulative(file, name)) for label, file, name in PHASES]
-    rows.append(("imports left to the run", *cumulative("<frozen importlib._bootstrap>",
-                                                        "_find_and_load")))  # fmt: skip
-    for label, calls, seconds in rows:
+def phase_lines(folder: str) -> list[str]:
+    """Wall-clock seconds of the run's phases, its modules imported first."""
+    out = Path(folder, "phases.json")
+    python(["-c", TIMERS, str(out), json.dumps(PHASES), *run_args(folder)[2:]])
+    spent = json.loads(out.read_text())
+    _, total = spent["run"]
+    lines = [f"the run once its modules are imported: {total:.2f} s"]
+    for label, module, name in PHASES:
+        if label not in spent:
+            lines.append(f"  {label:<30} (not timed: {module}.{name} not found)")
+            continue
+        calls, seconds = spent[label]
         lines.append(f"  {label:<30} {seconds:6.2f} s  {seconds / total:4.0%}  ({calls} calls)")
     return lines
 
@@ -148,12 +181,14 @@ def main() -> None:
             run.append(timed(run_args(folder)))
         summary = python(run_args(folder)).stdout.splitlines()
         size = json.loads(Path(folder, "run", "solution.json").read_text())["model_size"]
-        bare_s, run_s = statistics.median(bare), statistics.median(run)
+        (bare_s, bare_cpu), (run_s, run_cpu) = medians(bare), medians(run)
         say(f"bare import {bare_s:6.2f} s  python {' '.join(BARE)!r}, median of "
-            f"{len(bare)}: {' '.join(f'{s:.2f}' for s in bare)}")  # fmt: skip
+            f"{len(bare)}: {' '.join(f'{s:.2f}' for s, _ in bare)}")  # fmt: skip
         say(f"run         {run_s:6.2f} s  python {' '.join(RUN)} --out DIR, median of "
-            f"{len(run)}: {' '.join(f'{s:.2f}' for s in run)}")  # fmt: skip
+            f"{len(run)}: {' '.join(f'{s:.2f}' for s, _ in run)}")  # fmt: skip
         say(f"ratio       {run_s / bare_s:6.2f}    run / bare import (issue 21's goal: 2 or less)")
+        say(f"cpu         {bare_cpu:.2f} s and {run_cpu:.2f} s (user + system, medians): ratio "
+            f"{run_cpu / bare_cpu:.2f}, less sensitive to the machine's load")  # fmt: skip
         say("answer      " + " | ".join(s for s in summary if s.startswith(("total", "status"))))
         say(
             f"            {size['paths_certified']} paths certified (a fixed-path schedule "
@@ -161,7 +196,7 @@ def main() -> None:
         )
         say()
         say("where the run's time goes:")
-        for line in import_lines(folder) + profile_lines(folder):
+        for line in import_lines(folder) + phase_lines(folder):
             say(line)
     if options.out is not None:
         options.out.write_text("\n".join(lines) + "\n")
