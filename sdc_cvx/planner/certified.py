@@ -44,12 +44,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..milp.types import SolverOptions
+from ..milp.types import SolveReport, SolverOptions, Status
 from ..network.dominance import path_cost_floor
-from ..network.path_bounds import NetworkArcs, elementary_bounds, walk_bounds
+from ..network.path_bounds import NetworkArcs, cheapest_path, elementary_bounds, walk_bounds
 from ..physics.leg_bounds import LegCosts, leg_box_bound
+from .date_grid import grid_plans
 from .fixed_path import PathProblem, PathSchedule, solve_path
-from .relaxation import Arcs, solve_relaxation
+from .relaxation import Arcs, RelaxationResult, solve_relaxation
 
 INITIAL_CELLS = 8
 DEFAULT_GAP_REL = 1e-3
@@ -65,6 +66,8 @@ CANDIDATES = 40
 """Beam paths whose cells are refined together before a relaxation MILP is solved."""
 MAX_REFINE_ROUNDS = 30
 """Refinement rounds before a MILP at most (each certifies one path and splits cells)."""
+LABELS = "labels"
+"""The ``backend`` of a relaxation solved by labels rather than by a MILP."""
 MILP_STEP_S = 60.0
 """First time limit of each relaxation MILP [s], doubled whenever one reaches it: a MILP
 stopped early still proves its dual bound and usually holds a path to refine around.
@@ -403,6 +406,23 @@ class _Search:
         self.proven = proven
         return self.proven
 
+    def exact_relaxation(self, net: _Network, arcs: Arcs) -> RelaxationResult | None:
+        """The relaxation over ``arcs`` solved exactly by labels
+        (:func:`~sdc_cvx.network.path_bounds.cheapest_path`): the cheapest path of the
+        network that is not a settled one, or None when its labels are too many (the
+        MILP then solves it)."""
+        started = time.perf_counter()
+        network = NetworkArcs(arcs.tail, arcs.head, arcs.debris_from, arcs.debris_to,
+                              arcs.cost, net.n_nodes, np.asarray(self.start_allowed))  # fmt: skip
+        found = cheapest_path(network, self.nodes.legs, net.node_debris, self.level,
+                              excluded=self.settled, must_visit=self.nodes.must_visit)  # fmt: skip
+        if found is None:
+            return None
+        seconds = time.perf_counter() - started
+        report = SolveReport(Status.OPTIMAL, found.cost, found.cost, 0.0, 0, seconds, 0.0,
+                             LABELS, "cheapest path by labels")  # fmt: skip
+        return RelaxationResult(report, found.cost, found.debris, found.rows)
+
     def candidates(self, arcs, count: int):
         return _beam(arcs, self.n, self.nodes, self.start_allowed, exclude=self.settled,
                      count=count, completion=self.completion)  # fmt: skip
@@ -444,7 +464,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
             split_pieces: int = 2, gap_abs_mps: float = PATH_TOL_MPS,
             stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
-            known=None, path_tol_rel: float | None = None,
+            known=None, path_tol_rel: float | None = None, date_grid: bool = True,
             stop: Callable[[], bool] | None = None) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
@@ -491,6 +511,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     path_tol_rel : float, optional
         Relative tolerance of each path's schedule (default ``gap_rel / 2``: a path
         needs no finer certificate than the mission's).
+    date_grid : bool
+        Seed the search with the best plans of a beam search over a grid of dates
+        (:mod:`~sdc_cvx.planner.date_grid`): a few seconds that make the first
+        relaxations small.
     stop : callable, optional
         Asked between steps; True ends the search as a time limit does (the best plan
         with its gap): the command line's Ctrl-C.
@@ -531,6 +555,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         for seed in seeds:
             if len(seed) == nodes.legs + 1:
                 search.try_path(seed, "seed")
+        if date_grid and nodes.legs > 0:  # near-optimal plans before any network: they prune
+            search.say("  cheap plans from a grid of dates (a beam search)")
+            for plan in grid_plans(search.legs, search.edge_from, search.edge_to, nodes):
+                search.try_path(plan.path, "date grid")
         # cheap plans first, from a beam search over the first network: they prune the rest
         _, arcs, _ = search.network()
         for _, path, _ in search.candidates(arcs, SEED_PATHS):
@@ -569,17 +597,19 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                 search.notes.append(f"time limit ({time_limit_s:g} s) reached")
                 search.limited = True
                 break
-            start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
-            search.say(
-                f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
-                f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"
-            )
-            result = solve_relaxation(
-                arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
-                solver=_with_limit(solver, min(remaining, step_limit)),
-                must_visit=nodes.must_visit, cuts=list(search.settled),
-                solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
-            milp_solves += 1
+            result = search.exact_relaxation(net, arcs)  # labels; None: too many
+            if result is None:
+                start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
+                search.say(
+                    f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
+                    f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"
+                )
+                result = solve_relaxation(
+                    arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
+                    solver=_with_limit(solver, min(remaining, step_limit)),
+                    must_visit=nodes.must_visit, cuts=list(search.settled),
+                    solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
+                milp_solves += 1
             search.notes += [m for m in result.report.fallbacks if m not in search.notes]
             stopped = result.report.status.value in ("time_limit", "no_solution")
             out_of_time = time.perf_counter() >= deadline
@@ -605,9 +635,13 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             rows.append(row)
             if on_iteration is not None:
                 on_iteration(row)
+            how = (
+                f"labels {result.report.solve_seconds:.1f} s"
+                if result.report.backend == LABELS
+                else f"MILP {result.report.solve_seconds:.1f} s, {result.report.nodes} nodes"
+            )
             search.say(f"  bound {lower:.2f}, plan {search.upper:.2f} m/s ({len(arcs)} arcs, "
-                       f"{search.parts.count()} cells, MILP {result.report.solve_seconds:.1f} s, "
-                       f"{result.report.nodes} nodes)")  # fmt: skip
+                       f"{search.parts.count()} cells, {how})")  # fmt: skip
             if enumerating:
                 if result.lower_mps > ceiling_mps:  # every path under the ceiling is settled
                     break
