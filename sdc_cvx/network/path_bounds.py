@@ -79,6 +79,12 @@ class NetworkArcs:
         """Arcs that leave a start node (first legs)."""
         return self.tail < len(self.start_allowed)
 
+    def take(self, rows) -> NetworkArcs:
+        """The arcs ``rows`` (indices or a mask) of the same network."""
+        return NetworkArcs(self.tail[rows], self.head[rows], self.debris_from[rows],
+                           self.debris_to[rows], self.cost[rows], self.n_nodes,
+                           self.start_allowed)  # fmt: skip
+
 
 def walk_bounds(arcs: NetworkArcs, legs: int):
     """Cheapest walks of k arcs to and from every node [m/s].

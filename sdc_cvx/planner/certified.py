@@ -37,7 +37,6 @@ References
 
 from __future__ import annotations
 
-import heapq
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -242,14 +241,26 @@ class _Network:
         self.arcs = Arcs(tail[finite], head[finite], edge_from[self.edge], edge_to[self.edge],
                          bound[finite] + nodes.cost_mps[edge_to[self.edge]])  # fmt: skip
 
-    def pruned(self, nodes: CertifiedNodes, start_allowed, upper: float):
-        """Arcs that can lie on a plan within ``upper``, and the bound they prove [m/s].
+    def pruned(self, nodes: CertifiedNodes, start_allowed, upper: float, settled=()):
+        """Arcs that can lie on a plan within ``upper``, and the relaxation over them.
 
         Leg 0 leaves a start node (its operations cost added to the arc), later legs
         leave cells.  An arc leaves when the cheapest walk of L legs through it exceeds
-        ``upper``, then when the cheapest path does
-        (:mod:`~sdc_cvx.network.path_bounds`); the bound is the cheapest path of the
-        network (the cheapest walk when the paths are too many to label).
+        ``upper`` (:func:`~sdc_cvx.network.path_bounds.walk_bounds`).  The relaxation,
+        the cheapest path of the network that is none of the ``settled`` ones, is then
+        solved by labels (:func:`~sdc_cvx.network.path_bounds.cheapest_path`).  Where
+        the labels are too many, arcs also leave when the cheapest path through them
+        exceeds ``upper`` (:func:`~sdc_cvx.network.path_bounds.elementary_bounds`),
+        for the relaxation MILP that then solves it.
+
+        Returns
+        -------
+        arcs : Arcs
+        exact : CheapestPath or None
+            The relaxation's path, None when the labels were too many.
+        bound : float
+            No path of the network costs less [m/s] (the settled ones included when
+            ``exact`` is None).
         """
         a = self.arcs
         from_start = a.tail < self.n_debris
@@ -259,11 +270,18 @@ class _Network:
                               priced.cost, self.n_nodes, np.asarray(start_allowed))  # fmt: skip
         walks = walk_bounds(network, nodes.legs)
         self.completion = walks[1]
+        near = walks[2] <= upper + 1e-9  # inf: on no walk
+        if np.isfinite(upper):
+            exact = cheapest_path(network.take(near), nodes.legs, self.node_debris, upper,
+                                  walks, excluded=settled,
+                                  must_visit=nodes.must_visit)  # fmt: skip
+            if exact is not None:
+                return priced.take(near), exact, exact.cost
         through, cheapest = elementary_bounds(network, nodes.legs, self.node_debris, upper, walks)
         if through is None:
             through = walks[2]
         keep = np.isfinite(through) & (through <= upper + 1e-9)  # inf: on no path
-        return priced.take(keep), cheapest
+        return priced.take(keep), None, cheapest
 
 
 class _Search:
@@ -308,6 +326,7 @@ class _Search:
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
         self.trace: list[tuple[float, float, float]] = []  # (clock, bound, plan) on a change
         self.completion = None  # per node, cheapest walk of k legs from it (network())
+        self.exact = None  # (settled paths, the last network's relaxation by labels, seconds)
         self.notes: list[str] = []
         self.limited = False  # a limit, not the search's own criterion, ended it
 
@@ -386,15 +405,20 @@ class _Search:
 
     def network(self):
         """Arcs that could be on a plan better than the one held, and the bound they prove
-        (the network's cheapest path: :meth:`_Network.pruned`)."""
+        (the relaxation over them when the labels solve it, else the network's cheapest
+        path: :meth:`_Network.pruned`)."""
         alive = path_cost_floor(self.edge_from, self.edge_to, self.edge_floor,
                                 self.nodes.cost_mps, self.nodes.legs,
                                 first=self.nodes.first) <= self.level + 1e-9  # fmt: skip
         net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive,
                        self.deadline)  # fmt: skip
-        arcs, network_lower = net.pruned(self.nodes, self.start_allowed, self.level)
+        started = time.perf_counter()
+        arcs, exact, network_lower = net.pruned(self.nodes, self.start_allowed, self.level,
+                                                self.settled)  # fmt: skip
         self.prove(min(network_lower, self.upper))
         self.completion = net.completion
+        self.exact = None if exact is None else (len(self.settled), exact,
+                                                 time.perf_counter() - started)  # fmt: skip
         return net, arcs, network_lower
 
     def prove(self, relaxation_bound: float) -> float:
@@ -406,19 +430,13 @@ class _Search:
         self.proven = proven
         return self.proven
 
-    def exact_relaxation(self, net: _Network, arcs: Arcs) -> RelaxationResult | None:
-        """The relaxation over ``arcs`` solved exactly by labels
-        (:func:`~sdc_cvx.network.path_bounds.cheapest_path`): the cheapest path of the
-        network that is not a settled one, or None when its labels are too many (the
-        MILP then solves it)."""
-        started = time.perf_counter()
-        network = NetworkArcs(arcs.tail, arcs.head, arcs.debris_from, arcs.debris_to,
-                              arcs.cost, net.n_nodes, np.asarray(self.start_allowed))  # fmt: skip
-        found = cheapest_path(network, self.nodes.legs, net.node_debris, self.level,
-                              excluded=self.settled, must_visit=self.nodes.must_visit)  # fmt: skip
-        if found is None:
+    def exact_relaxation(self) -> RelaxationResult | None:
+        """The relaxation of the last network solved exactly by labels (its cheapest path
+        that is not a settled one), or None when its labels were too many or paths were
+        settled since (the MILP then solves it)."""
+        if self.exact is None or self.exact[0] != len(self.settled):
             return None
-        seconds = time.perf_counter() - started
+        _, found, seconds = self.exact
         report = SolveReport(Status.OPTIMAL, found.cost, found.cost, 0.0, 0, seconds, 0.0,
                              LABELS, "cheapest path by labels")  # fmt: skip
         return RelaxationResult(report, found.cost, found.debris, found.rows)
@@ -597,7 +615,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                 search.notes.append(f"time limit ({time_limit_s:g} s) reached")
                 search.limited = True
                 break
-            result = search.exact_relaxation(net, arcs)  # labels; None: too many
+            result = search.exact_relaxation()  # by labels; None: a MILP solves it
             if result is None:
                 start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
                 search.say(
@@ -728,25 +746,34 @@ def _beam(
     Returns up to ``count`` distinct debris paths not in ``exclude`` that visit
     ``must_visit``, as ``(cost, debris path, rows of arcs)``, cheapest first.
     """
-    by_tail: dict[int, list[int]] = {}
-    for row in range(len(arcs)):
-        by_tail.setdefault(int(arcs.tail[row]), []).append(row)
     L = nodes.legs
-    beam = [(0.0, 0.0, (int(i),), int(i), ()) for i in np.flatnonzero(start_allowed)]
+    n_nodes = int(max(np.max(arcs.tail, initial=-1), np.max(arcs.head, initial=-1))) + 1
+    order = np.argsort(arcs.tail, kind="stable")
+    first_of = np.searchsorted(arcs.tail[order], np.arange(max(n_nodes, n_debris) + 1))
+    node = np.flatnonzero(start_allowed)  # the start nodes are the debris' positions
+    cost = np.zeros(len(node))
+    paths, rows = node[:, None], np.empty((len(node), 0), dtype=int)
     for k in range(L):
-        rest = completion[L - 1 - k] if completion is not None else None
-        grown = [(cost + arcs.cost[r] + (rest[arcs.head[r]] if rest is not None else 0.0),
-                  cost + arcs.cost[r], path + (int(arcs.debris_to[r]),), int(arcs.head[r]),
-                  rows + (r,))
-                 for _, cost, path, node, rows in beam for r in by_tail.get(node, ())
-                 if arcs.debris_to[r] not in path]  # fmt: skip
-        beam = heapq.nsmallest(width, grown)
+        degree = first_of[node + 1] - first_of[node]
+        which = np.repeat(np.arange(len(node)), degree)
+        offset = np.arange(len(which)) - np.repeat(np.cumsum(degree) - degree, degree)
+        arc = order[first_of[node[which]] + offset]
+        fresh = ~(paths[which] == arcs.debris_to[arc][:, None]).any(axis=1)
+        which, arc = which[fresh], arc[fresh]
+        grown = cost[which] + arcs.cost[arc]
+        rank = grown + (completion[L - 1 - k][arcs.head[arc]] if completion is not None else 0.0)
+        top = np.argsort(rank, kind="stable")[:width]
+        which, arc = which[top], arc[top]
+        node, cost = arcs.head[arc], grown[top]
+        paths = np.column_stack([paths[which], arcs.debris_to[arc]])
+        rows = np.column_stack([rows[which], arc])
     required, excluded = set(nodes.must_visit), set(exclude)
     out, seen = [], set()
-    for _, cost, path, _, rows in sorted(beam):
+    for best in np.argsort(cost, kind="stable"):
+        path = tuple(int(v) for v in paths[best])
         if path not in seen and path not in excluded and required <= set(path):
             seen.add(path)
-            out.append((float(cost), path, rows))
+            out.append((float(cost[best]), path, tuple(int(r) for r in rows[best])))
         if len(out) >= count:
             break
     return out

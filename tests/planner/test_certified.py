@@ -26,7 +26,7 @@ def test_no_arc_leaves_a_barred_start_even_without_a_plan_in_hand():
     parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, 4)
     net = _Network(nodes, legs, i, j, parts, np.ones(len(i), dtype=bool))
     assert np.any(net.arcs.tail < n)  # first legs from every start exist before pruning
-    arcs, walk = net.pruned(nodes, np.arange(n) == first, np.inf)
+    arcs, _, walk = net.pruned(nodes, np.arange(n) == first, np.inf)
     starts = arcs.tail[arcs.tail < n]
     assert len(starts) > 0 and np.all(starts == first)
     assert np.isfinite(walk)
