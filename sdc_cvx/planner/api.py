@@ -33,7 +33,8 @@ from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunSta
 from . import sequential
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import PathSchedule, schedule_plan
-from .sequential import MissionNodes, SequentialSettings, make_legs
+from .nodes import MissionNodes, make_legs
+from .sequential import SequentialSettings
 
 
 def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,

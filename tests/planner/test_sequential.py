@@ -232,7 +232,8 @@ def test_the_held_plan_sits_in_the_copies_whose_windows_hold_its_dates():
     in the copies whose windows contain those dates (issue 13: otherwise the MILP
     restricted to the held copies cannot admit it, and the warm start fails)."""
     from sdc_cvx import SolverOptions
-    from sdc_cvx.planner.sequential import MissionNodes, _Driver
+    from sdc_cvx.planner.nodes import MissionNodes
+    from sdc_cvx.planner.sequential import _Driver
 
     catalog, mission = sso_catalog(6, seed=3), Mission(n=3, tmax_days=300.0)
     nodes = MissionNodes.of(catalog, mission)
