@@ -38,23 +38,23 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 
-from ..errors import MissionInfeasible, SolverFailure
-from ..inputs.catalog import Catalog
-from ..inputs.mission import Mission
-from ..milp.solve import chain_of, solve_with_fallback
-from ..milp.types import SolveReport, SolverOptions, Status
-from ..network.dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
-from ..network.edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
-from ..physics.leg_bounds import LegCosts
-from ..physics.orbits import SECONDS_PER_DAY
-from ..physics.plan import PlanEvaluation, evaluate_plan
-from ..physics.transfer import cheapest_transfer
-from ..solution import IterationRecord, Leg, RunStatus, Solution
+from ...errors import MissionInfeasible, SolverFailure
+from ...inputs.catalog import Catalog
+from ...inputs.mission import Mission
+from ...milp.solve import chain_of, solve_with_fallback
+from ...milp.types import SolveReport, SolverOptions, Status
+from ...network.dominance import cheapest_paths, path_cost_floor, transfer_dv_floor
+from ...network.edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
+from ...physics.leg_bounds import LegCosts
+from ...physics.orbits import SECONDS_PER_DAY
+from ...physics.plan import PlanEvaluation, evaluate_plan
+from ...physics.transfer import cheapest_transfer
+from ...solution import IterationRecord, Leg, RunStatus, Solution
+from ..fixed_path import PathProblem, schedule_plan, solve_path
+from ..nodes import MissionNodes, make_legs
 from .decisions import Action, Outcome, Phase, decide
-from .fixed_path import PathProblem, schedule_plan, solve_path
 from .linearize import EdgeGeometry, TrustRegion, linearize
 from .model import ModelSize, PathModel
-from .nodes import MissionNodes, make_legs
 from .reoptimize import reoptimize
 
 FROZEN_GAP_DEG = 0.1
@@ -222,7 +222,7 @@ class _Driver:
     It holds the problem as built (nodes, edge copies, geometry, dominance floor, the
     CVXPY model: set up in ``__init__``), the :class:`TrustState` (``trust``), the
     :class:`Incumbents` (``held``) and the :class:`RunLog` (``log``); :meth:`run`
-    dispatches on :func:`~sdc_cvx.planner.decisions.decide`.
+    dispatches on :func:`~sdc_cvx.planner.paper.decisions.decide`.
     """
 
     def __init__(self, nodes: MissionNodes, mission, solver, settings, progress):
@@ -532,7 +532,7 @@ class _Driver:
         point confirms the path: the linear iterations settle the discrete choice, the
         nonlinear step the continuous one.  If that MILP prefers another path, the
         iterations resume from it.  What to do after each iteration is
-        :func:`~sdc_cvx.planner.decisions.decide`'s rule; this loop carries it out.
+        :func:`~sdc_cvx.planner.paper.decisions.decide`'s rule; this loop carries it out.
         """
         self.seed()
         phase = Phase()
@@ -609,7 +609,7 @@ class _Driver:
         return self.trust.same_solution
 
     def observe(self, outcome, last_path, last_dv) -> Outcome:
-        """What :func:`~sdc_cvx.planner.decisions.decide` needs to know of an iteration."""
+        """What :func:`~sdc_cvx.planner.paper.decisions.decide` needs to know of an iteration."""
         if outcome is None:
             return Outcome(solved=False, stopped=self.held.stopped)
         path, legs, _, evaluation = outcome
@@ -725,7 +725,8 @@ class _Driver:
             )
 
     def true_optimum(self, path, legs, a_start, **options):
-        """:func:`~sdc_cvx.planner.reoptimize.reoptimize` of ``path`` from the copies' choices."""
+        """:func:`~sdc_cvx.planner.paper.reoptimize.reoptimize` of ``path`` from the copies'
+        choices."""
         g = self.geometry
         return reoptimize(
             self.orbits, path, g.side[legs], g.inc_drift[legs], a_start,
