@@ -102,7 +102,7 @@ class Phase:
 def decide(phase: Phase, outcome: Outcome, settings) -> Action:
     """The next action (see the module docstring for the rules).
 
-    ``settings`` is a :class:`~sdc_cvx.planner.paper.SequentialSettings` (only
+    ``settings`` is a :class:`~sdc_cvx.planner.paper.settings.SequentialSettings` (only
     ``max_assumption_rounds`` and ``max_confirmations`` are read).
     """
     if not outcome.solved:

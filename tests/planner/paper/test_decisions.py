@@ -2,8 +2,8 @@
 
 import pytest
 
-from sdc_cvx.planner.paper import SequentialSettings
 from sdc_cvx.planner.paper.decisions import Action, Outcome, Phase, decide
+from sdc_cvx.planner.paper.settings import SequentialSettings
 
 SETTINGS = SequentialSettings()
 
