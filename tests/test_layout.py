@@ -156,6 +156,39 @@ def test_solution_reaches_report_only_inside_save_and_plot():
     assert lazy == {"save", "plot"} and not top
 
 
+PLANNER = PACKAGE / "planner"
+PAPER = PLANNER / "paper"
+
+
+def test_the_certified_side_does_not_import_the_paper_room():
+    """The default method reads without the paper's: outside ``planner/paper/``, only
+    ``api.py`` (which dispatches to both methods) imports it, lazily or not."""
+    dispatchers = {PLANNER / "api.py", PLANNER / "__init__.py"}
+    for path in sorted(set(PLANNER.rglob("*.py")) - set(PAPER.rglob("*.py")) - dispatchers):
+        paper = {m for m in imports(path) if m.startswith("sdc_cvx.planner.paper")}
+        assert not paper, f"{module_name(path)} imports {sorted(paper)}"
+
+
+def test_the_planner_modules_import_one_another_without_a_cycle():
+    """Lazy imports included: a cycle would make the modules' order of reading circular."""
+    names = {module_name(path): path for path in PLANNER.rglob("*.py")}
+    graph = {name: imports(path) & set(names) - {name} for name, path in names.items()}
+    done, open_ = set(), []
+
+    def visit(name):
+        assert name not in open_, f"import cycle: {' -> '.join([*open_, name])}"
+        if name in done:
+            return
+        open_.append(name)
+        for other in sorted(graph[name]):
+            visit(other)
+        open_.pop()
+        done.add(name)
+
+    for name in sorted(graph):
+        visit(name)
+
+
 def test_errors_import_nothing_of_ours():
     ours = {m for m in imports(PACKAGE / "errors.py") if m.startswith("sdc_cvx")}
     assert not ours

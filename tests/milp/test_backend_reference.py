@@ -19,8 +19,8 @@ import pytest
 from sdc_cvx.milp.backends import installed_backends
 from sdc_cvx.milp.solve import solve_milp, solve_with_fallback
 from sdc_cvx.milp.types import BACKENDS, SolverOptions, Status
-from sdc_cvx.planner.linearize import Coefficients
-from sdc_cvx.planner.model import PathModel
+from sdc_cvx.planner.paper.linearize import Coefficients
+from sdc_cvx.planner.paper.model import PathModel
 
 REL = 1e-6
 
