@@ -6,7 +6,8 @@ from sdc_cvx import Catalog
 from sdc_cvx.physics.leg_bounds import LegCosts
 from sdc_cvx.physics.orbits import R_EARTH
 from sdc_cvx.physics.transfer import NodeOrbits
-from sdc_cvx.planner.certified import CertifiedNodes, _Network, _Partitions
+from sdc_cvx.planner.certified import CertifiedNodes
+from sdc_cvx.planner.certified.network import CellNetwork, DateCells
 
 A_LOW, A_HIGH = R_EARTH + 400e3, R_EARTH + 1200e3
 
@@ -23,8 +24,8 @@ def test_no_arc_leaves_a_barred_start_even_without_a_plan_in_hand():
     keep = j != first
     i, j = i[keep], j[keep]
     legs = LegCosts.build(orbits.take(i), orbits.take(j), A_LOW, A_HIGH)
-    parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, 4)
-    net = _Network(nodes, legs, i, j, parts, np.ones(len(i), dtype=bool))
+    parts = DateCells(n, nodes.ops_days, nodes.tmax_days, 4)
+    net = CellNetwork(nodes, legs, i, j, parts, np.ones(len(i), dtype=bool))
     assert np.any(net.arcs.tail < n)  # first legs from every start exist before pruning
     arcs, _, walk = net.pruned(nodes, np.arange(n) == first, np.inf)
     starts = arcs.tail[arcs.tail < n]
@@ -68,7 +69,8 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
 
     import pytest
 
-    from sdc_cvx.planner.certified import _OutOfTime, _Search
+    from sdc_cvx.planner.certified.network import OutOfTime
+    from sdc_cvx.planner.certified.search import _Search
 
     lines = []
     clock = type("Clock", (), {"deadline": time.perf_counter() + 1e3, "say": lines.append})()
@@ -80,5 +82,5 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
     on_chunk(10**12, 10**12)  # done: the heartbeat's phase moves on to the network
     assert lines[-1].startswith("  cost tables done (1000000000000 edges")
     clock.deadline = 0.0
-    with pytest.raises(_OutOfTime, match="3 of 1000000000000 edges"):
+    with pytest.raises(OutOfTime, match="3 of 1000000000000 edges"):
         on_chunk(3, 10**12)

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..physics.leg_bounds import LegCosts, leg_cost_at
+from ...physics.leg_bounds import LegCosts, leg_cost_at
 
 GRID_POINTS = 1_200_000
 """Leg costs evaluated for the grid at most (about 2 s): the dates per debris are fewer
