@@ -66,6 +66,9 @@ CANDIDATES = 40
 """Beam paths whose cells are refined together before a relaxation MILP is solved."""
 MAX_REFINE_ROUNDS = 30
 """Refinement rounds before a MILP at most (each certifies one path and splits cells)."""
+GRID_LEGS = 4
+"""Legs from which the first plans come from a grid of dates too (n >= 5): below, the
+network's beam finds the optimum as soon (the campaigns price many short missions)."""
 LABELS = "labels"
 """The ``backend`` of a relaxation solved by labels rather than by a MILP."""
 MILP_STEP_S = 60.0
@@ -268,7 +271,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
             split_pieces: int = 2, gap_abs_mps: float = PATH_TOL_MPS,
             stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
-            known=None, path_tol_rel: float | None = None, date_grid: bool = True,
+            known=None, path_tol_rel: float | None = None, date_grid: bool | None = None,
             stop: Callable[[], bool] | None = None) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
@@ -315,10 +318,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     path_tol_rel : float, optional
         Relative tolerance of each path's schedule (default ``gap_rel / 2``: a path
         needs no finer certificate than the mission's).
-    date_grid : bool
+    date_grid : bool, optional
         Seed the search with the best plans of a beam search over a grid of dates
-        (:mod:`~sdc_cvx.planner.date_grid`): a few seconds that make the first
-        relaxations small.
+        (:mod:`~sdc_cvx.planner.certified.date_grid`): a few seconds that make the first
+        relaxations small.  Default: from :data:`GRID_LEGS` legs on.
     stop : callable, optional
         Asked between steps; True ends the search as a time limit does (the best plan
         with its gap): the command line's Ctrl-C.
@@ -359,9 +362,11 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         for seed in seeds:
             if len(seed) == nodes.legs + 1:
                 search.try_path(seed, "seed")
-        if date_grid and nodes.legs > 0:  # near-optimal plans before any network: they prune
+        use_grid = nodes.legs >= GRID_LEGS if date_grid is None else date_grid
+        if use_grid:  # near-optimal plans before any network: they prune
             search.say("  cheap plans from a grid of dates (a beam search)")
-            for plan in grid_plans(search.legs, search.edge_from, search.edge_to, nodes):
+            for plan in grid_plans(search.legs, search.edge_from, search.edge_to, nodes,
+                                   deadline=deadline):  # fmt: skip
                 search.try_path(plan.path, "date grid")
         # cheap plans first, from a beam search over the first network: they prune the rest
         _, arcs, _ = search.network()
