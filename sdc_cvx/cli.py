@@ -31,7 +31,7 @@ from .errors import (
     SolverFailure,
     SweepError,
 )
-from .milp.types import BACKENDS, DEFAULT_BACKEND, package_version
+from .milp.types import DEFAULT_BACKEND, MILP_BACKENDS, package_version
 from .physics.orbits import DEFAULT_MAX_ECCENTRICITY
 
 if TYPE_CHECKING:  # the commands import what they use: --help stays light
@@ -132,7 +132,7 @@ def check_backend(solver: SolverOptions) -> None:
         click.echo(f"warning: {solver.backend} is not installed here; the fallback "
                    f"{usable_chain[0]} will be used", err=True)  # fmt: skip
     if not usable_chain:
-        usable = ", ".join(name for name in BACKENDS if name in installed) or "none"
+        usable = ", ".join(name for name in MILP_BACKENDS if name in installed) or "none"
         fail(
             f"solver.backend {solver.backend!r} is not installed here; installed MILP "
             f"backends: {usable} (see 'sdc-cvx solvers')"
@@ -786,7 +786,7 @@ def clusters_output(catalog: Catalog, min_objects: int, figure_path: str | None)
 @main.command()
 def solvers():
     """List the MILP backends CVXPY can use here, with their package versions."""
-    from .milp.backends import installed_backends
+    from .milp.backends import BACKENDS, installed_backends
 
     installed = set(installed_backends())
     rows = [("backend", "installed", "package", "version")]

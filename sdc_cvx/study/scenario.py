@@ -73,7 +73,7 @@ from ..inputs.catalog import Catalog
 from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
 from ..inputs.selection import DEFAULT_MAX_ECCENTRICITY, OBJECT_TYPES, select
-from ..milp.types import BACKENDS, SolverOptions
+from ..milp.types import MILP_BACKENDS, SolverOptions
 from .toml import read_toml, toml_value
 
 __all__ = [
@@ -91,8 +91,6 @@ CATALOG_FORMATS = FORMATS
 """Catalog formats a scenario may name (:data:`~sdc_cvx.inputs.formats.FORMAT_TABLE`)."""
 READABLE_FORMATS = FORMATS
 """Formats that can be read today (a format without a reader would be refused clearly)."""
-MILP_BACKENDS = tuple(BACKENDS)
-"""MILP backends a scenario may name (:data:`~sdc_cvx.milp.types.BACKENDS`)."""
 
 PAPER_CASE = "the paper's Table 5 bundled with sdc_cvx"
 
