@@ -22,6 +22,7 @@ import os
 from collections.abc import Sequence
 from functools import partial
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib import colormaps
@@ -32,8 +33,10 @@ from matplotlib.ticker import MaxNLocator
 from ..inputs.catalog import Catalog
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
 from ..physics.transfer import NodeOrbits, drift_rate
-from ..solution import Leg, Solution
-from .run_folder import write_atomic
+from .atomic import write_atomic
+
+if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
+    from ..solution import Leg, Solution
 
 __all__ = [
     "FIGURE_NAMES",
