@@ -11,8 +11,9 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
+from sdc_cvx.report.atomic import write_atomic
 from sdc_cvx.report.plots import plot_cost
-from sdc_cvx.report.run_folder import out_folder_problem, write_atomic, write_run
+from sdc_cvx.report.run_folder import out_folder_problem, write_run
 from sdc_cvx.study.scenario import load
 from tests.conftest import EXAMPLES, REPO
 

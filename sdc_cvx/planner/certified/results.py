@@ -113,3 +113,14 @@ class CertifiedResult:
         if not np.isfinite(self.upper_mps) or self.upper_mps == 0:
             return np.inf if not np.isfinite(self.upper_mps) else 0.0
         return max(self.gap_mps, 0.0) / self.upper_mps
+
+
+def allowed_gap(upper: float, gap_rel: float, gap_abs: float) -> float:
+    """The gap a certificate may leave below a plan of ``upper`` m/s [m/s]."""
+    return max(gap_rel * abs(upper), gap_abs)
+
+
+def within_gap(upper: float, lower: float, gap_rel: float, gap_abs: float) -> bool:
+    """The plan ``upper`` is certified by the bound ``lower`` (both m/s) within the gap."""
+    allowed = allowed_gap(upper, gap_rel, gap_abs) * (1 + 1e-9)
+    return bool(np.isfinite(upper) and upper - lower <= allowed)

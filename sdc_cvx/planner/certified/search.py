@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 
@@ -53,7 +54,7 @@ from ..fixed_path import PathProblem, PathSchedule, solve_path
 from .date_grid import grid_plans
 from .network import CellNetwork, DateCells, OutOfTime, beam_paths, refine_cells
 from .relaxation import RelaxationResult, solve_relaxation
-from .results import CertifiedNodes, CertifiedPath, CertifiedResult
+from .results import CertifiedNodes, CertifiedPath, CertifiedResult, allowed_gap, within_gap
 
 INITIAL_CELLS = 8
 DEFAULT_GAP_REL = 1e-3
@@ -166,10 +167,10 @@ class _Search:
         return max(self.upper, self.ceiling)
 
     def allowed(self, upper: float, gap_rel: float) -> float:
-        return _allowed(upper, gap_rel, self.gap_abs)
+        return allowed_gap(upper, gap_rel, self.gap_abs)
 
     def within(self, lower: float, gap_rel: float) -> bool:
-        return _within(self.upper, lower, gap_rel, self.gap_abs)
+        return within_gap(self.upper, lower, gap_rel, self.gap_abs)
 
     def try_path(self, path, why: str) -> None:
         """Certify one path (its best schedule and its lower bound), and hold it if better."""
@@ -415,7 +416,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                 )
                 result = solve_relaxation(
                     arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
-                    solver=_with_limit(solver, min(remaining, step_limit)),
+                    solver=replace(solver, time_limit_s=max(min(remaining, step_limit), 1.0)),
                     must_visit=nodes.must_visit, cuts=list(search.settled),
                     solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
                 milp_solves += 1
@@ -489,19 +490,3 @@ def _settles(schedule: PathSchedule, cutoff: float, tol_rel: float) -> bool:
     tol = max(PATH_TOL_MPS, tol_rel * schedule.upper_mps) if schedule.feasible else PATH_TOL_MPS
     return schedule.upper_mps - schedule.lower_mps <= tol * (1 + 1e-9) or \
         schedule.lower_mps > cutoff  # fmt: skip
-
-
-def _allowed(upper, gap_rel, gap_abs=PATH_TOL_MPS) -> float:
-    """The gap a certificate may leave below a plan of ``upper`` m/s [m/s]."""
-    return max(gap_rel * abs(upper), gap_abs)
-
-
-def _within(upper, lower, gap_rel, gap_abs=PATH_TOL_MPS) -> bool:
-    allowed = _allowed(upper, gap_rel, gap_abs) * (1 + 1e-9)
-    return bool(np.isfinite(upper) and upper - lower <= allowed)
-
-
-def _with_limit(solver: SolverOptions, remaining: float) -> SolverOptions:
-    from dataclasses import replace
-
-    return replace(solver, time_limit_s=max(remaining, 1.0))
