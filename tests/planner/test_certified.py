@@ -1,6 +1,7 @@
 """Pieces of the certified search that the brute-force tests cannot isolate."""
 
 import numpy as np
+import pytest
 
 from sdc_cvx import Catalog
 from sdc_cvx.physics.leg_bounds import LegCosts
@@ -86,13 +87,12 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
         on_chunk(3, 10**12)
 
 
+@pytest.mark.slow
 def test_the_milp_relaxation_still_certifies_where_labels_give_up(monkeypatch):
     """Labels give up on large networks (more than a million of one length) and the MILP
     solves the relaxation instead: with labels always giving up, the search still reaches
     the reference optimum of syn10 (an independent exhaustive search's) with a valid bound."""
     import json
-
-    import pytest
 
     from sdc_cvx import Mission, solve
     from sdc_cvx.planner.certified import network

@@ -35,7 +35,14 @@ def setup(case):
 
 
 @pytest.mark.requires_shared_data("reference_cases/optima.json")
-@pytest.mark.parametrize("case", ["rb08", "syn10", "lg7"])
+@pytest.mark.parametrize(
+    "case",
+    [
+        "syn10",
+        pytest.param("rb08", marks=pytest.mark.slow),
+        pytest.param("lg7", marks=pytest.mark.slow),
+    ],
+)
 def test_the_grids_best_sequence_is_the_optimal_one_and_flies(case):
     data, nodes, certified, legs, i, j = setup(case)
     plans = grid_plans(legs, i, j, certified)
