@@ -67,9 +67,11 @@ CANDIDATES = 40
 """Beam paths whose cells are refined together before a relaxation MILP is solved."""
 MAX_REFINE_ROUNDS = 30
 """Refinement rounds before a MILP at most (each certifies one path and splits cells)."""
-GRID_LEGS = 4
-"""Legs from which the first plans come from a grid of dates too (n >= 5): below, the
-network's beam finds the optimum as soon (the campaigns price many short missions)."""
+GRID_LEGS = 6
+"""Legs from which the first plans come from a grid of dates too (n >= 7): below, the
+network's beam finds the optimum about as soon, and the grid's second or two would
+weigh on short runs (the paper case end to end) and on campaigns, which price many
+short missions."""
 LABELS = "labels"
 """The ``backend`` of a relaxation solved by labels rather than by a MILP."""
 MILP_STEP_S = 60.0
