@@ -11,6 +11,12 @@ cannot hold the rest.
     python benchmarks/certify.py                       # every case, 120 s each
     python benchmarks/certify.py --only syn05 paper    # some cases
     python benchmarks/certify.py --csv benchmarks/results/certify.csv
+    python benchmarks/certify.py --large --time-limit 600   # issue 21's goals
+
+``--large`` runs the n = 7-10 goals instead: the reference cases lg7, lg8, lg8b beside
+the exhaustive search's recorded time (``oracle s``), catalogs drawn as they were but
+harder (N 14-16, RAANs over 60 degrees, T_max up to 730 days, the free inclination
+rule), GTOC9 with n = 8, and GTOC9 with n = 10 over 730 days.
 
 The machine it ran on is printed first: compare times within one run.
 """
@@ -28,6 +34,51 @@ from pathlib import Path
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"
 REFERENCE = SHARED / "reference_cases"
+
+
+ORACLE_S = {"lg7": 58.0, "lg8": 160.0, "lg8b": 118.0}
+"""The exhaustive search's wall time on these cases (reference_cases/README.md) [s]."""
+RANDOM_LARGE = [  # (seed, N, n, RAAN span [deg], T_max [days], inclination rule)
+    (9701, 14, 7, 60.0, 450.0, "table3"),
+    (9702, 16, 8, 60.0, 450.0, "table3"),
+    (9703, 14, 8, 40.0, 730.0, "table3"),
+    (9704, 12, 8, 30.0, 450.0, "free"),
+    (9705, 16, 7, 90.0, 600.0, "table3"),
+    (9706, 15, 8, 50.0, 500.0, "table3"),
+]
+"""Catalogs drawn as the reference cases lg7-lg8b were (README of reference_cases), with
+more debris, wider RAAN spreads and longer missions."""
+
+
+def random_large(seed, count, span_deg):
+    """A catalog drawn as reference cases lg7-lg8b: a, I, e, RAAN uniform, rounded."""
+    import numpy as np
+    import pandas as pd
+
+    from sdc_cvx import Catalog
+
+    rng = np.random.default_rng(seed)
+    a = np.round(rng.uniform(6950.0, 7400.0, count), 1)
+    inc = np.round(rng.uniform(97.6, 98.7, count), 2)
+    e = np.round(rng.uniform(0.0, 5e-4, count), 5)
+    raan = np.round(rng.uniform(0.0, span_deg, count) + rng.uniform(0.0, 360.0), 2) % 360.0
+    frame = pd.DataFrame(dict(id=[f"R{seed}-{k}" for k in range(count)], a_km=a, e=e,
+                              inc_deg=inc, raan_deg=raan))  # fmt: skip
+    return Catalog.from_frame(frame, source=f"random seed {seed}")
+
+
+def large_cases():
+    """The n = 7-10 goals of issue 21 (see the module docstring)."""
+    out = [case for case in cases() if case[0].startswith("lg")]
+    for seed, count, n, span, tmax, rule in RANDOM_LARGE:
+        out.append((f"r{seed}-N{count}-n{n}-{tmax:g}d-{rule}", ("random", (seed, count, span)),
+                    dict(n=n, tmax_days=tmax, drift_inclination=rule), None))  # fmt: skip
+    gtoc9 = SHARED / "gtoc9" / "debris_data.txt"
+    if gtoc9.is_file():
+        out.append(("gtoc9-n8", ("gtoc9", str(gtoc9)), dict(n=8, tmax_days=365.25), None))
+        out.append(("gtoc9-n10-730d", ("gtoc9", str(gtoc9)), dict(n=10, tmax_days=730.0),
+                    None))  # fmt: skip
+    return out
 
 
 def cases():
@@ -69,6 +120,8 @@ def run_case(spec, mission_kw, time_limit, queue):
         catalog = Catalog.paper_case()
     elif kind == "csv":
         catalog = Catalog.from_csv(path)
+    elif kind == "random":
+        catalog = random_large(*path)
     else:
         from sdc_cvx.inputs.formats import read_catalog
         from sdc_cvx.study.scenario import Selection
@@ -95,6 +148,7 @@ def main(argv=None):
     parser.add_argument("--time-limit", type=float, default=120.0, help="per case [s]")
     parser.add_argument("--only", nargs="*", help="case names (or prefixes) to run")
     parser.add_argument("--csv", help="also write the table here")
+    parser.add_argument("--large", action="store_true", help="the n = 7-10 goals instead")
     args = parser.parse_args(argv)
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
@@ -102,10 +156,10 @@ def main(argv=None):
           f"time limit {args.time_limit:g} s per case")  # fmt: skip
     header = (f"{'case':<20} {'N':>4} {'n':>2} {'T_max':>7} {'answer':>9} {'bound':>9} "
               f"{'gap m/s':>8} {'gap %':>6} {'s':>6} {'MILPs':>5} {'cells':>5} "
-              f"{'status':<10} {'/opt':>7} {'MB':>5}")  # fmt: skip
+              f"{'status':<10} {'/opt':>7} {'MB':>5} {'oracle s':>8}")  # fmt: skip
     print(header)
     rows = []
-    for name, spec, mission_kw, optimum in cases():
+    for name, spec, mission_kw, optimum in large_cases() if args.large else cases():
         if args.only and not any(name.startswith(k) for k in args.only):
             continue
         queue = mp.get_context("spawn").Queue()
@@ -134,8 +188,8 @@ def main(argv=None):
               f"{num('answer', '9.2f'):>9} {num('lower', '9.2f'):>9} {num('gap_mps', '8.2f'):>8} "
               f"{num('gap_pct', '6.3f'):>6} "
               f"{num('seconds', '6.1f'):>6} {num('milps', '5d'):>5} {num('cells', '5d'):>5} "
-              f"{row['status']:<10} {num('ratio', '7.4f'):>7} {num('peak_mb', '5.0f'):>5}",
-              flush=True)  # fmt: skip
+              f"{row['status']:<10} {num('ratio', '7.4f'):>7} {num('peak_mb', '5.0f'):>5} "
+              f"{ORACLE_S.get(name.split('-')[0], float('nan')):>8g}", flush=True)  # fmt: skip
     if args.csv:
         import pandas as pd
 

@@ -48,7 +48,8 @@ from sdc_cvx.milp import solve as milp_solve
 from sdc_cvx.milp.backends import installed_backends
 from sdc_cvx.milp.solve import solve_milp
 from sdc_cvx.milp.types import SolverOptions
-from sdc_cvx.planner import sequential
+from sdc_cvx.planner import paper
+from sdc_cvx.planner.paper import driver
 
 GTOC9 = Path(__file__).resolve().parents[2] / "shared" / "data" / "gtoc9" / "debris_data.txt"
 
@@ -227,7 +228,7 @@ def plot(rows, path: Path):
 def final_milp(catalog: Catalog, time_limit: float):
     """Run the driver with HiGHS in-process and keep its last MILP (parameter values)."""
     captured = {}
-    real = sequential.solve_with_fallback
+    real = driver.solve_with_fallback
 
     def spy(problem, chain, **kwargs):
         captured["problem"] = problem
@@ -235,11 +236,11 @@ def final_milp(catalog: Catalog, time_limit: float):
                               for p in problem.parameters()]  # fmt: skip
         return real(problem, chain, **kwargs)
 
-    sequential.solve_with_fallback = spy
+    driver.solve_with_fallback = spy
     try:
-        sequential.solve(catalog, Mission(), solver=SolverOptions(time_limit_s=time_limit))
+        paper.solve(catalog, Mission(), solver=SolverOptions(time_limit_s=time_limit))
     finally:
-        sequential.solve_with_fallback = real
+        driver.solve_with_fallback = real
     for parameter, value in captured["values"]:
         parameter.value = value
     return captured["problem"]

@@ -15,7 +15,7 @@ import statistics
 from sdc_cvx import Catalog, Mission
 from sdc_cvx.inputs.synthetic import sso_catalog
 from sdc_cvx.milp.types import SolverOptions
-from sdc_cvx.planner.sequential import solve
+from sdc_cvx.planner.paper import solve
 
 
 def phases(catalog, solver, mission=None):

@@ -33,7 +33,7 @@ _EXPORTS = {
     "Mission": "sdc_cvx.inputs.mission",
     "MissionError": "sdc_cvx.errors",
     "MissionInfeasible": "sdc_cvx.errors",
-    "SequentialSettings": "sdc_cvx.planner.sequential",
+    "SequentialSettings": "sdc_cvx.planner.paper.settings",
     "Solution": "sdc_cvx.solution",
     "SolverFailure": "sdc_cvx.errors",
     "SolverOptions": "sdc_cvx.milp.types",
@@ -76,7 +76,7 @@ if TYPE_CHECKING:
     from .milp.types import SolverOptions
     from .network.edges import EdgeTable, preoptimize
     from .planner.api import solve
-    from .planner.sequential import SequentialSettings
+    from .planner.paper.settings import SequentialSettings
     from .solution import Solution
     from .study.figure import plot_sweep
     from .study.runner import sweep

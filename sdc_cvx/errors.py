@@ -9,7 +9,7 @@
 
 The command line's exit codes map from these families (:data:`sdc_cvx.cli.EXIT_CODES`).
 Each class is also importable from the module that raises it (``sdc_cvx.inputs.catalog``,
-``sdc_cvx.inputs.mission``, ``sdc_cvx.study.scenario``, ``sdc_cvx.planner.sequential``,
+``sdc_cvx.inputs.mission``, ``sdc_cvx.study.scenario``, ``sdc_cvx.planner.paper.driver``,
 ``sdc_cvx.study.runner``) and, except :class:`ScenarioError` and :class:`SweepError`,
 from ``sdc_cvx``.  This module imports nothing of sdc_cvx.
 """

@@ -24,6 +24,7 @@ import pandas as pd
 
 from .inputs.catalog import Catalog
 from .inputs.mission import Mission
+from .report.run_folder import save_solution
 
 
 class RunStatus(StrEnum):
@@ -272,8 +273,6 @@ class Solution:
         any other non-empty folder refused: see :mod:`sdc_cvx.report.run_folder`).
         Returns the paths written.
         """
-        from .report.run_folder import save_solution  # report imports this module: lazily
-
         return save_solution(self, folder, formats=tuple(formats), scenario_toml=scenario_toml)
 
     def plot(self) -> dict:

@@ -56,8 +56,7 @@ def pytest_runtest_setup(item):
         for relative in marker.args:
             shared_file(relative)
     for marker in item.iter_markers("requires_backend"):
-        from sdc_cvx.milp.backends import installed_backends
-        from sdc_cvx.milp.types import BACKENDS
+        from sdc_cvx.milp.backends import BACKENDS, installed_backends
 
         name = marker.args[0]
         if name not in installed_backends():

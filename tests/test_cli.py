@@ -48,8 +48,8 @@ def test_run_shows_progress_per_iteration_when_forced(tmp_path):
     result = CliRunner().invoke(main, ["run", "--out", str(tmp_path), "--n", "3", "--progress"])
     assert result.exit_code == 0, result.output
     steps = [line for line in result.stderr.splitlines() if line.startswith("  ")]
-    assert any(line.startswith("  relaxation MILP 1: ") for line in steps)
-    assert any(line.startswith("  bound ") for line in steps)
+    assert any(line.startswith("  cost tables done") for line in steps)
+    assert any(line.startswith("  plan ") and "m/s" in line for line in steps)
     assert not any(line in result.stdout for line in steps)
     log = (tmp_path / "run.log").read_text()
     assert all(line in log for line in steps)
@@ -311,6 +311,8 @@ def test_run_falls_back_from_an_unavailable_backend(tmp_path):
         main,
         [
             "run",
+            "--method",
+            "paper",  # the certified search solves its relaxations by labels here
             "--backend",
             "MOSEK",
             "--fallback",

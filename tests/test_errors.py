@@ -27,7 +27,7 @@ def test_each_error_has_a_family_and_an_exit_code(cls, family, builtin, code):
 def test_the_old_homes_re_export_the_same_classes():
     from sdc_cvx.inputs.catalog import CatalogError
     from sdc_cvx.inputs.mission import MissionError
-    from sdc_cvx.planner.sequential import MissionInfeasible, SolverFailure
+    from sdc_cvx.planner.paper.driver import MissionInfeasible, SolverFailure
     from sdc_cvx.study.runner import SweepError
     from sdc_cvx.study.scenario import ScenarioError
 

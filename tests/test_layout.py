@@ -1,4 +1,5 @@
-"""The package layout: which layer may import which (README "Layout"), and light imports.
+"""The package layout: which layer may import which (README "Layout"), no import cycle, no
+module over :data:`MAX_LINES` lines, and light imports.
 
 Every module's imports are read with ``ast`` (module level and inside functions, so a
 lazy import counts too; ``if TYPE_CHECKING:`` blocks are skipped: they never run).
@@ -22,9 +23,9 @@ RULES = {
     "inputs": {"physics"},
     "network": {"inputs", "physics"},
     "milp": set(),
-    "solution": {"inputs", "physics", "report"},  # report: only inside save() and plot()
+    "solution": {"inputs", "physics", "report"},  # report's figures: only inside plot()
     "planner": {"milp", "network", "inputs", "physics", "solution"},
-    "report": {"solution", "inputs", "network", "physics"},
+    "report": {"inputs", "network", "physics"},  # solution: a type hint only
     "study": {"planner", "inputs", "milp", "report", "solution"},
     "campaign": {"planner", "inputs", "milp", "network", "physics", "solution", "study", "report"},
     "cli": {
@@ -62,6 +63,10 @@ THIRD_PARTY = {
 
 CVXPY_LAYERS = {"milp", "planner", "campaign"}
 
+MAX_LINES = 500
+"""The longest a module of sdc_cvx may be (README "Layout")."""
+
+
 
 def layer_of(module: str) -> str:
     """``sdc_cvx.inputs.formats.tle`` -> ``inputs``; ``sdc_cvx`` -> ``__init__``."""
@@ -77,6 +82,14 @@ def module_name(path: Path) -> str:
     return ".".join(parts)
 
 
+def is_module(name: str) -> bool:
+    """Whether ``name`` (``sdc_cvx.report.plots``) is a module or package of ours."""
+    if name.split(".")[0] != PACKAGE.name:
+        return False
+    path = PACKAGE.parent.joinpath(*name.split("."))
+    return path.with_suffix(".py").is_file() or (path / "__init__.py").is_file()
+
+
 def is_type_checking(node: ast.If) -> bool:
     test = node.test
     return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
@@ -85,7 +98,11 @@ def is_type_checking(node: ast.If) -> bool:
 
 
 def imports(path: Path) -> set[str]:
-    """Absolute names of the modules ``path`` imports (relative imports resolved)."""
+    """Absolute names of the modules ``path`` imports (relative imports resolved).
+
+    ``from a.b import c`` imports the module ``a.b.c`` when there is one (``from . import
+    x``), else the module ``a.b`` (its name ``c``).
+    """
     name = module_name(path)
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found = set()
@@ -103,11 +120,11 @@ def imports(path: Path) -> set[str]:
                     base = package.split(".")
                     base = base[: len(base) - (child.level - 1)]
                     target = ".".join(base + ([child.module] if child.module else []))
-                    if child.module is None:  # from . import x: x may be a module
-                        found.update(f"{target}.{alias.name}" for alias in child.names)
-                    found.add(target)
                 else:
-                    found.add(child.module)
+                    target = child.module
+                for alias in child.names:
+                    submodule = f"{target}.{alias.name}"
+                    found.add(submodule if is_module(submodule) else target)
             visit(child)
 
     visit(ast.parse(path.read_text(encoding="utf-8")))
@@ -115,6 +132,47 @@ def imports(path: Path) -> set[str]:
 
 
 MODULES = sorted(PACKAGE.rglob("*.py"))
+
+
+def import_graph() -> dict[str, set[str]]:
+    """Each module of sdc_cvx -> the modules of sdc_cvx it imports (see :func:`imports`).
+
+    An import of ``a.b.c`` is an edge to ``a.b.c`` alone: its parent packages run first
+    but stand for themselves, so a package ``__init__`` that gathers its own submodules
+    (``cli/__init__.py``) is no cycle, unless one of them imports it back, which is an
+    edge here.
+    """
+    names = {module_name(path): path for path in MODULES}
+    return {
+        name: {other for other in imports(path) if other in names and other != name}
+        for name, path in names.items()
+    }
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """A cycle of ``graph`` as ``[a, b, ..., a]`` (each imports the next), or None."""
+    finished: set[str] = set()
+    path: list[str] = []
+
+    def visit(node: str) -> list[str] | None:
+        path.append(node)
+        for successor in sorted(graph[node]):
+            if successor in path:
+                return path[path.index(successor) :] + [successor]
+            if successor not in finished:
+                cycle = visit(successor)
+                if cycle:
+                    return cycle
+        path.pop()
+        finished.add(node)
+        return None
+
+    for node in sorted(graph):
+        if node not in finished:
+            cycle = visit(node)
+            if cycle:
+                return cycle
+    return None
 
 
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: module_name(p))
@@ -142,18 +200,70 @@ def test_third_party_imports(path):
         assert not others
 
 
-def test_solution_reaches_report_only_inside_save_and_plot():
-    """``report`` imports ``solution``: ``Solution.save`` / ``.plot`` import it lazily, and
-    nothing else in ``solution`` imports it (no cycle at import time)."""
-    tree = ast.parse((PACKAGE / "solution.py").read_text(encoding="utf-8"))
-    lazy = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.FunctionDef):
-            for child in ast.walk(node):
-                if isinstance(child, ast.ImportFrom) and (child.module or "").startswith("report"):
-                    lazy.add(node.name)
-    top = [n for n in tree.body if isinstance(n, ast.ImportFrom) and "report" in (n.module or "")]
-    assert lazy == {"save", "plot"} and not top
+def test_solution_loads_matplotlib_only_to_draw():
+    """``solution`` -> ``report`` is the one direction (``report`` names ``Solution`` in
+    type hints only): ``Solution.save`` writes through the run folder's module, and
+    ``Solution.plot`` imports the figures, and matplotlib, when it is called."""
+    code = "import sys, sdc_cvx.solution\nassert 'matplotlib' not in sys.modules\n"
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_no_import_cycle():
+    """No module imports, even lazily, a module that leads back to it."""
+    cycle = find_cycle(import_graph())
+    assert cycle is None, "import cycle: " + " -> ".join(cycle)
+
+
+def test_find_cycle_reports_the_cycle():
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a", "d"}, "d": set(), "e": {"a"}}
+    assert find_cycle(graph) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": set()}) is None
+
+
+def test_imports_name_the_submodule_a_from_import_takes():
+    assert "sdc_cvx.inputs.formats.csv" in imports(PACKAGE / "inputs" / "formats" / "__init__.py")
+    cli = imports(PACKAGE / "cli" / "__init__.py")
+    assert "sdc_cvx.cli.run" in cli and "sdc_cvx.cli" not in cli
+
+
+def test_no_module_over_the_line_limit():
+    lengths = {module_name(path): len(path.read_text(encoding="utf-8").splitlines())
+               for path in MODULES}  # fmt: skip
+    over = {name: lines for name, lines in lengths.items() if lines > MAX_LINES}
+    assert not over, f"over {MAX_LINES} lines, split them: {over}"
+
+
+PLANNER = PACKAGE / "planner"
+PAPER = PLANNER / "paper"
+
+
+def test_the_certified_side_does_not_import_the_paper_room():
+    """The default method reads without the paper's: outside ``planner/paper/``, only
+    ``api.py`` (which dispatches to both methods) imports it, lazily or not."""
+    dispatchers = {PLANNER / "api.py", PLANNER / "__init__.py"}
+    for path in sorted(set(PLANNER.rglob("*.py")) - set(PAPER.rglob("*.py")) - dispatchers):
+        paper = {m for m in imports(path) if m.startswith("sdc_cvx.planner.paper")}
+        assert not paper, f"{module_name(path)} imports {sorted(paper)}"
+
+
+def test_the_planner_modules_import_one_another_without_a_cycle():
+    """Lazy imports included: a cycle would make the modules' order of reading circular."""
+    names = {module_name(path): path for path in PLANNER.rglob("*.py")}
+    graph = {name: imports(path) & set(names) - {name} for name, path in names.items()}
+    done, open_ = set(), []
+
+    def visit(name):
+        assert name not in open_, f"import cycle: {' -> '.join([*open_, name])}"
+        if name in done:
+            return
+        open_.append(name)
+        for other in sorted(graph[name]):
+            visit(other)
+        open_.pop()
+        done.add(name)
+
+    for name in sorted(graph):
+        visit(name)
 
 
 def test_errors_import_nothing_of_ours():

@@ -34,7 +34,7 @@ from ..network.edges import drift_radius_bounds, node_orbits
 from ..planner.api import certified_nodes
 from ..planner.certified import certify
 from ..planner.fixed_path import PathSchedule
-from ..planner.sequential import MissionNodes
+from ..planner.nodes import MissionNodes
 
 
 @dataclass(frozen=True)

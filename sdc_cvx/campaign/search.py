@@ -46,7 +46,7 @@ from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
 from ..network.edges import node_orbits
 from ..planner.api import solution_of
-from ..planner.sequential import MissionNodes
+from ..planner.nodes import MissionNodes
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
 from ..study.executors import open_executor
 from .master import solve_ip, solve_lp

@@ -1,7 +1,7 @@
 """Solving a CVXPY MILP with one backend (:func:`solve_milp`) or a chain of them
 (:func:`solve_with_fallback`), with the result checked (:func:`check_result`).
 
-See :mod:`sdc_cvx.milp.backends` for how each backend's raw answer is read.
+See :mod:`sdc_cvx.milp.readers` for how each backend's raw answer is read.
 """
 
 from __future__ import annotations
@@ -16,9 +16,10 @@ import cvxpy as cp
 import numpy as np
 from cvxpy import settings as cvxpy_settings
 
-from .backends import RawContext, _installed
+from .backends import BACKENDS, _installed
 from .output import backend_stdout
-from .types import BACKENDS, SolveReport, SolverOptions, Status
+from .readers import RawContext
+from .types import SolveReport, SolverOptions, Status
 
 CHECK_TOLERANCE = 1e-6
 """Integrality and constraint-violation tolerance of :func:`check_result`."""

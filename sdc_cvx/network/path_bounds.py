@@ -79,6 +79,12 @@ class NetworkArcs:
         """Arcs that leave a start node (first legs)."""
         return self.tail < len(self.start_allowed)
 
+    def take(self, rows) -> NetworkArcs:
+        """The arcs ``rows`` (indices or a mask) of the same network."""
+        return NetworkArcs(self.tail[rows], self.head[rows], self.debris_from[rows],
+                           self.debris_to[rows], self.cost[rows], self.n_nodes,
+                           self.start_allowed)  # fmt: skip
+
 
 def walk_bounds(arcs: NetworkArcs, legs: int):
     """Cheapest walks of k arcs to and from every node [m/s].
@@ -124,11 +130,16 @@ def walk_bounds(arcs: NetworkArcs, legs: int):
 
 @dataclass(frozen=True)
 class _Labels:
-    """Partial paths of one length: node, visited debris (sorted, one row each), cost."""
+    """Partial paths of one length: node, visited debris (sorted, one row each), cost; and
+    for :func:`cheapest_path`, the excluded paths' trie state, the parent label (one
+    length shorter) and the arc that made each."""
 
     node: np.ndarray
     visited: np.ndarray
     cost: np.ndarray
+    state: np.ndarray | None = None
+    parent: np.ndarray | None = None
+    arc: np.ndarray | None = None
 
     def __len__(self):
         return len(self.cost)
@@ -217,10 +228,14 @@ def _grouped(source, usable, n_nodes: int):
 
 
 def _extend(labels: _Labels, grouped, target, new_debris, cost, rest, upper,
-            max_labels) -> _Labels | None:  # fmt: skip
+            max_labels, trie=None) -> _Labels | None:  # fmt: skip
     """Labels one arc longer: along the arcs leaving each label's node (``grouped``, from
     :func:`_grouped`) for a debris not visited yet, kept while ``cost + rest[node] <=
-    upper``, one per (node, visited debris), the cheapest."""
+    upper``, one per (node, visited debris), the cheapest.
+
+    With ``trie`` (:func:`_trie`'s transition table), one per (node, visited debris,
+    trie state), each label keeping its parent and arc.
+    """
     rows, starts = grouped
     degree = (starts[1:] - starts[:-1])[labels.node]
     if int(degree.sum()) > max_labels * 8:
@@ -233,16 +248,20 @@ def _extend(labels: _Labels, grouped, target, new_debris, cost, rest, upper,
     node = target[arc]
     fresh = ~(labels.visited[which] == debris[:, None]).any(axis=1)
     ok = fresh & (total + rest[node] <= upper + 1e-9)
-    which, debris, total, node = which[ok], debris[ok], total[ok], node[ok]
+    which, debris, total, node, arc = which[ok], debris[ok], total[ok], node[ok], arc[ok]
     visited = np.sort(np.column_stack([labels.visited[which], debris]), axis=1)
-    keys = np.column_stack([node, visited])
+    state = None if trie is None else trie[labels.state[which], debris]
+    keys = np.column_stack([node, visited] if trie is None else [node, state, visited])
     order = np.lexsort((total,) + tuple(keys[:, c] for c in range(keys.shape[1] - 1, -1, -1)))
     keys, total = keys[order], total[order]
     new = np.ones(len(total), dtype=bool)
     new[1:] = (keys[1:] != keys[:-1]).any(axis=1)
     if int(new.sum()) > max_labels:
         return None
-    return _Labels(keys[new, 0], keys[new, 1:], total[new])
+    if trie is None:
+        return _Labels(keys[new, 0], keys[new, 1:], total[new])
+    kept = order[new]
+    return _Labels(keys[new, 0], keys[new, 2:], total[new], keys[new, 1], which[kept], arc[kept])
 
 
 def _top(labels: _Labels, n_nodes: int, count: int):
@@ -276,3 +295,120 @@ def _paired(forward: _Labels, backward: _Labels, arcs: NetworkArcs, rows, n_node
         beyond = np.minimum(f_after[tail] + b_cost[head][:, 0], f_cost[tail][:, 0] + b_after[head])
         out[part] = np.minimum(best, beyond) + arcs.cost[rows[part]]
     return out
+
+
+@dataclass(frozen=True)
+class CheapestPath:
+    """The cheapest path of a network that is none of the excluded ones.
+
+    Attributes
+    ----------
+    cost : float
+        Its cost [m/s] (``inf``: no such path within the ``upper`` it was asked under).
+    debris : tuple of int
+        Its debris, in order (empty when ``cost`` is ``inf``).
+    rows : ndarray of int
+        Its arcs, in order.
+    """
+
+    cost: float
+    debris: tuple[int, ...]
+    rows: np.ndarray
+
+
+def cheapest_path(arcs: NetworkArcs, legs: int, node_debris, upper: float, walks=None, *,
+                  excluded=(), must_visit=(), max_labels: int = MAX_LABELS,
+                  ) -> CheapestPath | None:  # fmt: skip
+    """The cheapest path of L arcs within ``upper`` whose debris sequence is not excluded.
+
+    Exact, by labels: a label is a partial path (node, visited debris, cost) with the
+    state of its debris sequence in the trie of the excluded sequences (their longest
+    prefix it follows, or none); one label per (node, visited debris, trie state), the
+    cheapest, so two partial paths are compared only when every completion does the
+    same to both.  A label whose cost plus the walk bound of its completion exceeds
+    ``upper`` is dropped.  This is the time-expanded relaxation of the certified search
+    with its no-good rows (:func:`~sdc_cvx.planner.relaxation.solve_relaxation`) solved
+    exactly without a MILP.
+
+    Parameters
+    ----------
+    arcs : NetworkArcs
+    legs : int
+        Arcs on a path (L).
+    node_debris : array_like of int
+        Debris of each network node.
+    upper : float
+        Paths above this are not looked for [m/s] (finite).
+    walks : tuple, optional
+        :func:`walk_bounds` of the same arcs.
+    excluded : iterable of sequence of int
+        Debris sequences (L + 1 debris each) that may not be the answer.
+    must_visit : sequence of int
+        Debris the path must visit.
+    max_labels : int
+        Labels of one length at most; beyond, the function gives up.
+
+    Returns
+    -------
+    CheapestPath or None
+        None when the labels exceeded ``max_labels``.
+    """
+    node_debris = np.asarray(node_debris, dtype=np.int64)
+    forward_walk, backward_walk, _ = walks or walk_bounds(arcs, legs)
+    n_debris = int(max(np.max(node_debris, initial=-1), np.max(arcs.debris_to, initial=-1))) + 1
+    trie, leaf = _trie(excluded, n_debris)
+    first, n = arcs.first, arcs.n_nodes
+    leaving_start, leaving_cell = _grouped(arcs.tail, first, n), _grouped(arcs.tail, ~first, n)
+    starts = np.flatnonzero(np.isfinite(forward_walk[0]))
+    labels = [_Labels(starts, node_debris[starts][:, None], np.zeros(len(starts)),
+                      trie[_ROOT, node_debris[starts]], np.full(len(starts), -1),
+                      np.full(len(starts), -1))]  # fmt: skip
+    for k in range(legs):
+        grown = _extend(labels[-1], leaving_start if k == 0 else leaving_cell, arcs.head,
+                        arcs.debris_to, arcs.cost, backward_walk[legs - 1 - k], upper,
+                        max_labels, trie)  # fmt: skip
+        if grown is None:
+            return None
+        labels.append(grown)
+    last = labels[-1]
+    required = np.asarray(list(must_visit), dtype=np.int64)
+    has_all = np.ones(len(last), dtype=bool)
+    for debris in required:
+        has_all &= (last.visited == debris).any(axis=1)
+    usable = np.flatnonzero(~leaf[last.state] & has_all)
+    if not len(usable):
+        return CheapestPath(np.inf, (), np.empty(0, dtype=int))
+    best = int(usable[np.argmin(last.cost[usable])])
+    rows, label = [], best
+    for k in range(legs, 0, -1):
+        rows.append(int(labels[k].arc[label]))
+        label = int(labels[k].parent[label])
+    rows = np.array(rows[::-1], dtype=int)
+    debris = (int(arcs.debris_from[rows[0]]),) + tuple(int(d) for d in arcs.debris_to[rows])
+    return CheapestPath(float(last.cost[best]), debris, rows)
+
+
+_FREE, _ROOT = 0, 1
+"""Trie states: a sequence that follows no excluded one, and the empty sequence."""
+
+
+def _trie(sequences, n_debris: int):
+    """Transition table ``next[state, debris]`` of the trie of ``sequences`` (``_FREE``
+    where a sequence leaves every one of them) and which states end an excluded one."""
+    children: list[dict[int, int]] = [{}, {}]  # _FREE, _ROOT
+    ends = {_FREE: False, _ROOT: False}
+    for sequence in sequences:
+        state = _ROOT
+        for debris in sequence:
+            if int(debris) not in children[state]:
+                children[state][int(debris)] = len(children)
+                children.append({})
+                ends[len(children) - 1] = False
+            state = children[state][int(debris)]
+        ends[state] = True
+    table = np.zeros((len(children), n_debris), dtype=np.int64)
+    for state, out in enumerate(children):
+        for debris, child in out.items():
+            if debris < n_debris:
+                table[state, debris] = child
+    return table, np.array([ends[k] for k in range(len(children))], dtype=bool)

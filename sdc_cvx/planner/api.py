@@ -6,7 +6,7 @@
   between a proven lower bound and the best plan, refined until they are within
   ``SolverOptions.gap`` (``docs/design.md`` §9); the answer carries its bound and gap;
 - ``"paper"``: the sequential linearisation of Part IV-C
-  (:func:`~sdc_cvx.planner.sequential.solve`), a local method without a bound.
+  (:func:`~sdc_cvx.planner.paper.solve`), a local method without a bound.
 
 References
 ----------
@@ -30,10 +30,11 @@ from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
 from ..network.edges import drift_radius_bounds, node_orbits
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunStatus, Solution
-from . import sequential
+from . import paper
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import PathSchedule, schedule_plan
-from .sequential import MissionNodes, SequentialSettings, make_legs
+from .nodes import MissionNodes, make_legs
+from .paper import SequentialSettings
 
 
 def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
@@ -83,8 +84,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     for message in ignored:
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     if solver.method == "paper":
-        solution = sequential.solve(catalog, mission, solver=solver, settings=settings,
-                                    progress=progress)  # fmt: skip
+        solution = paper.solve(catalog, mission, solver=solver, settings=settings,
+                               progress=progress)  # fmt: skip
         return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
     catalog = Catalog.paper_case() if catalog is None else catalog
     mission = Mission() if mission is None else mission

@@ -27,7 +27,8 @@ import json
 import re
 from pathlib import Path
 
-from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_atomic, write_staged
+from .atomic import write_atomic
+from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_staged
 
 CAMPAIGN_FOLDER_MARKERS = ("campaign.json", "campaign.log", "missions.csv")
 """A folder holding one of these is an earlier campaign folder, which is replaced."""

@@ -18,7 +18,7 @@ from matplotlib import colormaps
 from matplotlib.figure import Figure
 
 from ..physics.orbits import SECONDS_PER_DAY, raan_rate
-from .run_folder import write_atomic
+from .atomic import write_atomic
 
 FIGURE_SIZE = (9.0, 4.8)
 _CANDIDATE_COLOR = "#c7c7c7"

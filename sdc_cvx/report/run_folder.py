@@ -1,9 +1,7 @@
 """Writing a run's results to a folder, atomically.
 
-:func:`write_atomic` is the one atomic writer of a file (a temporary file, then
-rename): the run folder, the figures (:mod:`sdc_cvx.report.plots`) and the sweep folders
-all go through it.  Files are created with the permissions ``open`` would give them
-(0666 less the umask: 0644 under the usual 022), not ``mkstemp``'s 0600.
+Every file is written by the one atomic writer, :func:`~sdc_cvx.report.atomic.write_atomic`
+(a temporary file, then rename), with the permissions ``open`` would give it.
 
 :func:`write_run` writes a whole run folder aside (a hidden ``.NAME.*.partial`` folder
 next to it) and swaps it in at once, so ``--out`` never shows a mix of two runs: a reader
@@ -38,13 +36,16 @@ from collections.abc import Callable
 from datetime import datetime
 from functools import partial
 from pathlib import Path
-from typing import BinaryIO, TextIO
+from typing import TYPE_CHECKING, TextIO
 
 import pandas as pd
 
 from ..inputs.catalog import Catalog
 from ..network.edges import EdgeTable
-from ..solution import Solution
+from .atomic import file_mode, write_atomic
+
+if TYPE_CHECKING:  # solution imports this module (Solution.save): the type is a hint only
+    from ..solution import Solution
 
 RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
 """A folder holding one of these is an earlier run folder, which ``write_run`` replaces."""
@@ -59,40 +60,6 @@ LIVE_LOG_SIGNATURE = "# sdc_cvx live run log: it moves into the run folder as ru
 """First line of a live log: a ``NAME.log`` without it is the user's and never touched."""
 CSV_FLOAT_FORMAT = "%.10g"
 """Floats in the CSV files: 10 significant digits (no ``98.30000000000001``)."""
-
-
-def file_mode(mode: int = 0o666) -> int:
-    """``mode`` less the process umask: the permissions ``open`` would give a new file."""
-    umask = os.umask(0)
-    os.umask(umask)
-    return mode & ~umask
-
-
-def write_atomic(
-    path: Path, content: str | Callable[[BinaryIO], None], *, mode: int | None = None
-) -> None:
-    """Write ``content`` to ``path`` so that readers never see a truncated file.
-
-    The one atomic writer of sdc_cvx (a temporary file in the same folder, then
-    ``os.replace``).  ``content`` is text (written as UTF-8) or a function that writes
-    the bytes to the binary stream it is given (a figure's ``savefig``).  ``mode``: the
-    permissions of the file; default those of a new file under the umask (0644 under
-    022), not the 0600 of the temporary file.
-    """
-    path = Path(path)
-    handle, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        if callable(content):
-            with os.fdopen(handle, "wb") as stream:
-                content(stream)
-        else:
-            with os.fdopen(handle, "w", encoding="utf-8") as stream:
-                stream.write(content)
-        os.chmod(temp, file_mode() if mode is None else mode)
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
 
 
 def new_run_folder(parent: Path | str = ".", prefix: str = "sdc_run_") -> Path:

@@ -37,7 +37,8 @@ from typing import NamedTuple
 import pandas as pd
 
 from ..errors import SweepError
-from ..report.run_folder import new_run_folder, write_atomic
+from ..report.atomic import write_atomic
+from ..report.run_folder import new_run_folder
 from .executors import _executor, _locked
 from .figure import plot_sweep
 from .results import (

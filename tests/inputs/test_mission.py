@@ -92,7 +92,7 @@ def test_a_deorbit_perigee_above_a_candidate_perigee_is_refused_before_any_solve
 
 def test_the_vehicle_deorbit_cost_is_positive_at_every_debris():
     from sdc_cvx import Catalog
-    from sdc_cvx.planner.sequential import MissionNodes
+    from sdc_cvx.planner.nodes import MissionNodes
 
     catalog = Catalog.paper_case()
     perigees = (catalog.a_m * (1 - catalog.e) - R_EARTH) / 1e3

@@ -8,9 +8,14 @@ import cvxpy as cp
 import numpy as np
 import pytest
 
-from sdc_cvx.milp.backends import available_backends, backend_kwargs, installed_backends
+from sdc_cvx.milp.backends import (
+    BACKENDS,
+    available_backends,
+    backend_kwargs,
+    installed_backends,
+)
 from sdc_cvx.milp.solve import check_result, solve_milp
-from sdc_cvx.milp.types import BACKENDS, DEFAULT_BACKEND, MILP_BACKENDS, SolverOptions, Status
+from sdc_cvx.milp.types import DEFAULT_BACKEND, MILP_BACKENDS, SolverOptions, Status
 
 INSTALLED = installed_backends()
 EASY_OPTIMUM = 2034.0  # of easy_knapsack(), found by every backend without limits
@@ -255,6 +260,7 @@ def test_registry_lists_every_milp_backend_cvxpy_knows():
     assert set(MILP_BACKENDS) == {"HIGHS", "SCIP", "CBC", "GLPK_MI", "SCIPY", "GUROBI", "CPLEX",
                                   "XPRESS", "MOSEK", "COPT"}  # fmt: skip
     assert set(MILP_BACKENDS) <= set(cp.settings.SOLVERS)
+    assert tuple(BACKENDS) == MILP_BACKENDS  # the table holds every name, in that order
 
 
 def test_available_backends():

@@ -121,3 +121,62 @@ def test_no_path_from_a_barred_start():
     first = arcs.tail < len(only)
     assert np.all(np.isinf(through[first & (arcs.tail != 1)]))
     assert np.any(np.isfinite(through[first & (arcs.tail == 1)]))
+
+
+def every_path(arcs: NetworkArcs, legs: int, node_debris):
+    """Every path of ``legs`` arcs (each debris at most once): (cost, debris, arcs)."""
+    leaving = {}
+    for a in range(len(arcs.cost)):
+        leaving.setdefault(int(arcs.tail[a]), []).append(a)
+    out = []
+
+    def grow(sequence, debris, cost):
+        if len(sequence) == legs:
+            out.append((cost, debris, sequence))
+            return
+        for a in leaving.get(int(arcs.head[sequence[-1]]), ()):
+            d = int(node_debris[arcs.head[a]])
+            if d not in debris:
+                grow(sequence + (a,), debris + (d,), cost + arcs.cost[a])
+
+    for start in np.flatnonzero(arcs.start_allowed):
+        for a in leaving.get(int(start), ()):
+            grow((a,), (int(start), int(node_debris[arcs.head[a]])), arcs.cost[a])
+    return out
+
+
+@pytest.mark.parametrize("seed", range(10))
+@pytest.mark.parametrize("legs", [1, 2, 3])
+def test_cheapest_path_skips_the_excluded_sequences(seed, legs):
+    """Against every path enumerated: the cheapest whose debris sequence is neither one of
+    the cheapest few sequences (excluded, as settled paths are) nor misses a must-visit
+    debris; its arcs are a path of that cost."""
+    arcs, node_debris = random_network(seed, n_debris=5, cells=2)
+    paths = sorted(every_path(arcs, legs, node_debris))
+    if not paths:
+        pytest.skip("no path of this length in this network")
+    sequences = list(dict.fromkeys(debris for _, debris, _ in paths))
+    rng = np.random.default_rng(seed)
+    must = (int(rng.integers(5)),) if seed % 2 else ()
+    for k in range(min(4, len(sequences)) + 1):
+        excluded = sequences[:k]
+        left = [(c, d) for c, d, _ in paths if d not in excluded and set(must) <= set(d)]
+        found = path_bounds.cheapest_path(arcs, legs, node_debris, 1e9, excluded=excluded,
+                                          must_visit=must)  # fmt: skip
+        if not left:
+            assert found.cost == np.inf and found.debris == ()
+            continue
+        assert found.cost == pytest.approx(min(c for c, _ in left))
+        assert found.debris not in excluded and set(must) <= set(found.debris)
+        rows = found.rows
+        assert np.all(arcs.head[rows[:-1]] == arcs.tail[rows[1:]])  # a chain of arcs
+        assert arcs.cost[rows].sum() == pytest.approx(found.cost)
+        assert (int(arcs.debris_from[rows[0]]),) + tuple(arcs.debris_to[rows]) == found.debris
+
+
+def test_cheapest_path_within_upper_only():
+    arcs, node_debris = random_network(3)
+    cheapest = min(c for c, _, _ in every_path(arcs, 2, node_debris))
+    assert path_bounds.cheapest_path(arcs, 2, node_debris, cheapest - 1e-3).cost == np.inf
+    assert path_bounds.cheapest_path(arcs, 2, node_debris, cheapest + 1e-3).cost == \
+        pytest.approx(cheapest)  # fmt: skip

@@ -1,12 +1,14 @@
 """Pieces of the certified search that the brute-force tests cannot isolate."""
 
 import numpy as np
+import pytest
 
 from sdc_cvx import Catalog
 from sdc_cvx.physics.leg_bounds import LegCosts
 from sdc_cvx.physics.orbits import R_EARTH
 from sdc_cvx.physics.transfer import NodeOrbits
-from sdc_cvx.planner.certified import CertifiedNodes, _Network, _Partitions
+from sdc_cvx.planner.certified import CertifiedNodes
+from sdc_cvx.planner.certified.network import CellNetwork, DateCells
 
 A_LOW, A_HIGH = R_EARTH + 400e3, R_EARTH + 1200e3
 
@@ -23,10 +25,10 @@ def test_no_arc_leaves_a_barred_start_even_without_a_plan_in_hand():
     keep = j != first
     i, j = i[keep], j[keep]
     legs = LegCosts.build(orbits.take(i), orbits.take(j), A_LOW, A_HIGH)
-    parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, 4)
-    net = _Network(nodes, legs, i, j, parts, np.ones(len(i), dtype=bool))
+    parts = DateCells(n, nodes.ops_days, nodes.tmax_days, 4)
+    net = CellNetwork(nodes, legs, i, j, parts, np.ones(len(i), dtype=bool))
     assert np.any(net.arcs.tail < n)  # first legs from every start exist before pruning
-    arcs, walk = net.pruned(nodes, np.arange(n) == first, np.inf)
+    arcs, _, walk = net.pruned(nodes, np.arange(n) == first, np.inf)
     starts = arcs.tail[arcs.tail < n]
     assert len(starts) > 0 and np.all(starts == first)
     assert np.isfinite(walk)
@@ -68,7 +70,8 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
 
     import pytest
 
-    from sdc_cvx.planner.certified import _OutOfTime, _Search
+    from sdc_cvx.planner.certified.network import OutOfTime
+    from sdc_cvx.planner.certified.search import _Search
 
     lines = []
     clock = type("Clock", (), {"deadline": time.perf_counter() + 1e3, "say": lines.append})()
@@ -80,5 +83,30 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
     on_chunk(10**12, 10**12)  # done: the heartbeat's phase moves on to the network
     assert lines[-1].startswith("  cost tables done (1000000000000 edges")
     clock.deadline = 0.0
-    with pytest.raises(_OutOfTime, match="3 of 1000000000000 edges"):
+    with pytest.raises(OutOfTime, match="3 of 1000000000000 edges"):
         on_chunk(3, 10**12)
+
+
+@pytest.mark.slow
+def test_the_milp_relaxation_still_certifies_where_labels_give_up(monkeypatch):
+    """Labels give up on large networks (more than a million of one length) and the MILP
+    solves the relaxation instead: with labels always giving up, the search still reaches
+    the reference optimum of syn10 (an independent exhaustive search's) with a valid bound."""
+    import json
+
+    from sdc_cvx import Mission, solve
+    from sdc_cvx.planner.certified import network
+
+    from ..conftest import SHARED_DATA
+
+    cases = SHARED_DATA / "reference_cases"
+    if not (cases / "optima.json").is_file():
+        pytest.skip("reference cases not found")
+    data = json.loads((cases / "optima.json").read_text())["syn10"]
+    monkeypatch.setattr(network, "cheapest_path", lambda *args, **kwargs: None)
+    solution = solve(Catalog.from_csv(cases / data["catalog"]),
+                     Mission(n=data["n"], tmax_days=data["tmax_days"]))  # fmt: skip
+    optimum = data["table3"]["optimum_dv_mps"]
+    assert solution.certified and solution.backend != "labels"
+    assert solution.total_dv_mps <= optimum * 1.001 + 0.01
+    assert solution.lower_bound_mps <= optimum + 1e-6

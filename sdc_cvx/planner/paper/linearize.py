@@ -35,8 +35,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..physics.orbits import SECONDS_PER_DAY, wrap_angle
-from ..physics.transfer import (
+from ...physics.orbits import SECONDS_PER_DAY, wrap_angle
+from ...physics.transfer import (
     NodeOrbits,
     drift_rate,
     duration_bounded_interval,

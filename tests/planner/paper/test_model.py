@@ -6,9 +6,9 @@ import pytest
 
 from sdc_cvx.milp.solve import solve_milp
 from sdc_cvx.milp.types import SolverOptions
-from sdc_cvx.planner.linearize import Coefficients
-from sdc_cvx.planner.model import ModelSize, PathModel
-from sdc_cvx.planner.sequential import read_path
+from sdc_cvx.planner.paper.driver import read_path
+from sdc_cvx.planner.paper.linearize import Coefficients
+from sdc_cvx.planner.paper.model import ModelSize, PathModel
 
 
 def coefficients(costs, durations=None, tmax=100.0):

@@ -1,10 +1,10 @@
 """The decision rules of the sequential linearisation (paper Part IV-C), as one pure function.
 
-After each iteration the driver (:mod:`sdc_cvx.planner.sequential`) sums up what the
+After each iteration the driver (:mod:`sdc_cvx.planner.paper.driver`) sums up what the
 MILP and the true model said in an :class:`Outcome`, keeps where the run is in a
 :class:`Phase`, and asks :func:`decide` what to do next; ``_Driver.run`` dispatches on
 the :class:`Action`.  :func:`decide` needs no MILP and no physics: each rule has its
-own unit test (``tests/planner/test_decisions.py``).
+own unit test (``tests/planner/paper/test_decisions.py``).
 
 The rules, in the order they are tried:
 
@@ -102,7 +102,7 @@ class Phase:
 def decide(phase: Phase, outcome: Outcome, settings) -> Action:
     """The next action (see the module docstring for the rules).
 
-    ``settings`` is a :class:`~sdc_cvx.planner.sequential.SequentialSettings` (only
+    ``settings`` is a :class:`~sdc_cvx.planner.paper.settings.SequentialSettings` (only
     ``max_assumption_rounds`` and ``max_confirmations`` are read).
     """
     if not outcome.solved:

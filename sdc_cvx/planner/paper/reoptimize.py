@@ -31,9 +31,9 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import minimize
 
-from ..physics.orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
-from ..physics.plan import PlanEvaluation, evaluate_plan
-from ..physics.transfer import (
+from ...physics.orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
+from ...physics.plan import PlanEvaluation, evaluate_plan
+from ...physics.transfer import (
     NodeOrbits,
     drift_inclination,
     drift_rate,

@@ -1,9 +1,9 @@
-"""The driver's decision rules, one test each, without a MILP (sdc_cvx.planner.decisions)."""
+"""The driver's decision rules, one test each, without a MILP (sdc_cvx.planner.paper.decisions)."""
 
 import pytest
 
-from sdc_cvx.planner.decisions import Action, Outcome, Phase, decide
-from sdc_cvx.planner.sequential import SequentialSettings
+from sdc_cvx.planner.paper.decisions import Action, Outcome, Phase, decide
+from sdc_cvx.planner.paper.settings import SequentialSettings
 
 SETTINGS = SequentialSettings()
 

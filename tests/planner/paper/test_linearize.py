@@ -5,8 +5,8 @@ import pytest
 
 from sdc_cvx import Catalog, Mission, preoptimize
 from sdc_cvx.inputs.synthetic import sso_catalog
-from sdc_cvx.planner.linearize import TrustRegion, linearize
-from sdc_cvx.planner.sequential import edge_geometry
+from sdc_cvx.planner.paper.driver import edge_geometry
+from sdc_cvx.planner.paper.linearize import TrustRegion, linearize
 
 
 @pytest.fixture(scope="module", params=["paper", "synthetic"])

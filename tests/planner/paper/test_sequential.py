@@ -7,10 +7,11 @@ import pandas as pd
 import pytest
 
 from sdc_cvx import Catalog, Mission
+from sdc_cvx.errors import MissionInfeasible, SolverFailure
 from sdc_cvx.inputs.synthetic import sso_catalog
 from sdc_cvx.physics.orbits import SECONDS_PER_DAY
 from sdc_cvx.physics.transfer import NodeOrbits, transfer_duration, transfer_dv
-from sdc_cvx.planner.sequential import MissionInfeasible, SequentialSettings, SolverFailure, solve
+from sdc_cvx.planner.paper import SequentialSettings, solve
 
 # Table 7 of the paper: iteration, path, dV [m/s], duration [days]
 TABLE_7 = [
@@ -116,9 +117,9 @@ def no_incumbent(problem, chain, warm_start=False):
 
 def test_time_limit_without_incumbent_is_not_a_solution(monkeypatch):
     """A backend that stops before any incumbent must surface as a failure, not zeros."""
-    import sdc_cvx.planner.sequential as sequential
+    import sdc_cvx.planner.paper.driver as driver
 
-    monkeypatch.setattr(sequential, "solve_with_fallback", no_incumbent)
+    monkeypatch.setattr(driver, "solve_with_fallback", no_incumbent)
     catalog = sso_catalog(14, seed=3, raan_span_deg=40.0)
     with pytest.raises(SolverFailure, match="raise the time limit"):
         solve(catalog, Mission(n=4, tmax_days=300.0), settings=SequentialSettings(seed_paths=0))
@@ -127,9 +128,9 @@ def test_time_limit_without_incumbent_is_not_a_solution(monkeypatch):
 def test_time_limit_without_incumbent_returns_the_plan_held_and_says_so(monkeypatch):
     """With a plan held before the first MILP (seed paths), a MILP stopped empty-handed
     ends the run on that plan, with its own status, instead of losing it."""
-    import sdc_cvx.planner.sequential as sequential
+    import sdc_cvx.planner.paper.driver as driver
 
-    monkeypatch.setattr(sequential, "solve_with_fallback", no_incumbent)
+    monkeypatch.setattr(driver, "solve_with_fallback", no_incumbent)
     catalog = sso_catalog(14, seed=3, raan_span_deg=40.0)  # dates matter: seeds are used
     mission = Mission(n=4, tmax_days=300.0, deorbit_days=5.0)
     sol = solve(catalog, mission)
@@ -197,7 +198,7 @@ def test_the_paper_method_flies_its_path_on_the_paths_best_schedule():
     local re-optimisation stopped at 1013.4 m/s on the path the paper's method chose; the
     brute force (independent of the planner) flies that path at about 807 m/s.
     """
-    from .test_certified_property import random_case
+    from ..test_certified_property import random_case
 
     case = random_case(5)
     sol = solve(case.catalog(), case.mission())
@@ -215,7 +216,7 @@ def test_steps_that_change_nothing_end_the_run_as_stalled():
     Which catalogs repeat depends on the backend's choices among equal MILP optima:
     with highspy 1.15 spread4-n3-120d did, with 1.16 spread5-n3-250d does (under both
     inclination rules) and spread4-n3-120d converges."""
-    from .test_enumeration import CASES
+    from ..test_enumeration import CASES
 
     case = next(case for case in CASES if case.name == "spread5-n3-250d")
     sol = solve(case.catalog(), case.mission())
@@ -232,7 +233,8 @@ def test_the_held_plan_sits_in_the_copies_whose_windows_hold_its_dates():
     in the copies whose windows contain those dates (issue 13: otherwise the MILP
     restricted to the held copies cannot admit it, and the warm start fails)."""
     from sdc_cvx import SolverOptions
-    from sdc_cvx.planner.sequential import MissionNodes, _Driver
+    from sdc_cvx.planner.nodes import MissionNodes
+    from sdc_cvx.planner.paper.driver import _Driver
 
     catalog, mission = sso_catalog(6, seed=3), Mission(n=3, tmax_days=300.0)
     nodes = MissionNodes.of(catalog, mission)
@@ -260,7 +262,7 @@ def test_with_its_warm_start_admitted_the_run_no_longer_stalls_here():
     """sso4-n4-365d: the held plan flew outside its copies' windows, the MILP restricted
     to them was infeasible, and the run repeated one solution until it stalled; held in
     the copies that hold its dates, it converges."""
-    from .test_enumeration import CASES
+    from ..test_enumeration import CASES
 
     case = next(case for case in CASES if case.name == "sso4-n4-365d")
     sol = solve(case.catalog(), case.mission())

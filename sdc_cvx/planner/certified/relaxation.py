@@ -39,8 +39,8 @@ import cvxpy as cp
 import numpy as np
 import scipy.sparse as sp
 
-from ..milp.solve import chain_of, solve_with_fallback
-from ..milp.types import SolveReport, SolverOptions
+from ...milp.solve import chain_of, solve_with_fallback
+from ...milp.types import SolveReport, SolverOptions
 
 
 @dataclass(frozen=True)

@@ -5,25 +5,29 @@ transfer model of Part III):
 
 1. every ordered pair of candidate debris is an edge (no heuristic filter: an edge
    leaves only when a bound proves it cannot be on a plan better than the incumbent);
-2. each debris' dates [0, T_max] are split into cells; the time-expanded relaxation
-   (:mod:`~sdc_cvx.relaxation`) priced by exact box bounds is a MILP whose optimum is a
-   lower bound of the mission;
+   the first plans come from a beam search over a grid of dates
+   (:mod:`~sdc_cvx.planner.certified.date_grid`);
+2. each debris' dates [0, T_max] are split into cells; the time-expanded network
+   (:mod:`~sdc_cvx.planner.certified.network`) prices each arc by the exact lower bound
+   of its leg over its box of dates, and its relaxation (the cheapest path of L legs
+   that is none of the settled paths) is a lower bound of the mission.  Labels solve
+   it exactly (:func:`~sdc_cvx.network.path_bounds.cheapest_path`); a MILP
+   (:mod:`~sdc_cvx.planner.certified.relaxation`) where the labels are too many;
 3. the relaxation's path is optimised globally as a fixed path
-   (:func:`~sdc_cvx.fixed_path.solve_path`): a plan that flies, i.e. an upper bound, and
-   a certified lower bound of that path alone, after which a no-good row removes it
-   from the relaxation;
+   (:func:`~sdc_cvx.planner.fixed_path.solve_path`): a plan that flies, i.e. an upper
+   bound, and a certified lower bound of that path alone; it is then settled (excluded
+   from the relaxation);
 4. the cells the relaxation's path used are halved and arcs that cannot be on a plan
-   better than the incumbent are dropped (the cheapest walk, then the cheapest path
-   through each arc: :mod:`~sdc_cvx.network.path_bounds`); before each
-   MILP, the cells of the paths a beam search finds under the plan (more than the gap
-   below it) are halved too, and the best of them certified, until it finds none: the
-   MILP is then a certificate more than a guide;
+   better than the incumbent are dropped (the cheapest walk through each arc:
+   :mod:`~sdc_cvx.network.path_bounds`); before each relaxation, the cells of the paths
+   a beam search over the network finds under the plan (more than the gap below it)
+   are halved too, and the best of them certified, until it finds none;
 5. until the best plan is within the requested gap of the lower bound
-   ``min(relaxation, lower bounds of the removed paths)``, or a limit stops the search,
+   ``min(relaxation, lower bounds of the settled paths)``, or a limit stops the search,
    which then reports the plan with its gap.
 
-Plans from other sources (the paper's sequential linearisation, a beam search over the
-network) enter as incumbents: they prune, they are never taken as proven.
+Plans from other sources (the paper's sequential linearisation, the beam searches)
+enter as incumbents: they prune, they are never taken as proven.
 
 References
 ----------
@@ -37,230 +41,43 @@ References
 
 from __future__ import annotations
 
-import heapq
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import replace
 
 import numpy as np
 
-from ..milp.types import SolverOptions
-from ..network.dominance import path_cost_floor
-from ..network.path_bounds import NetworkArcs, elementary_bounds, walk_bounds
-from ..physics.leg_bounds import LegCosts, leg_box_bound
-from .fixed_path import PathProblem, PathSchedule, solve_path
-from .relaxation import Arcs, solve_relaxation
+from ...milp.types import SolveReport, SolverOptions, Status
+from ...network.dominance import path_cost_floor
+from ...physics.leg_bounds import LegCosts
+from ..fixed_path import PathProblem, PathSchedule, solve_path
+from .date_grid import grid_plans
+from .network import CellNetwork, DateCells, OutOfTime, beam_paths, refine_cells
+from .relaxation import RelaxationResult, solve_relaxation
+from .results import CertifiedNodes, CertifiedPath, CertifiedResult, allowed_gap, within_gap
 
 INITIAL_CELLS = 8
 DEFAULT_GAP_REL = 1e-3
 PATH_TOL_MPS = 0.01
 SEED_PATHS = 12
-BEAM_WIDTH = 1000
 FIRST_ARCS = 1.5e6
 """About the most arcs of the first network (before a plan prunes edges): the initial
 cells per debris are fewer when the edges are many."""
-BOUND_CHUNK = 200_000
-"""Arcs whose box bounds are computed together (memory: the first network of N = 481)."""
 CANDIDATES = 40
 """Beam paths whose cells are refined together before a relaxation MILP is solved."""
 MAX_REFINE_ROUNDS = 30
 """Refinement rounds before a MILP at most (each certifies one path and splits cells)."""
+GRID_LEGS = 6
+"""Legs from which the first plans come from a grid of dates too (n >= 7): below, the
+network's beam finds the optimum about as soon, and the grid's second or two would
+weigh on short runs (the paper case end to end) and on campaigns, which price many
+short missions."""
+LABELS = "labels"
+"""The ``backend`` of a relaxation solved by labels rather than by a MILP."""
 MILP_STEP_S = 60.0
 """First time limit of each relaxation MILP [s], doubled whenever one reaches it: a MILP
 stopped early still proves its dual bound and usually holds a path to refine around.
 Measured: 10 s cost rb08 75 s (two MILPs stopped, then one proved) against 35 s."""
-
-
-@dataclass(frozen=True)
-class CertifiedNodes:
-    """The mission as the certified search needs it (positions into the catalog).
-
-    Attributes
-    ----------
-    legs : int
-        Transfers on a path.
-    ops_days, cost_mps : ndarray
-        Operations time [days] and cost [m/s] at each node.
-    first : int or None
-    must_visit, excluded : tuple of int
-    tmax_days, tmin_days : float
-    rule : str
-    j2 : float
-    """
-
-    legs: int
-    ops_days: np.ndarray
-    cost_mps: np.ndarray
-    first: int | None
-    must_visit: tuple[int, ...]
-    excluded: tuple[int, ...]
-    tmax_days: float
-    tmin_days: float
-    rule: str
-    j2: float
-
-
-@dataclass(frozen=True)
-class CertifiedPath:
-    """One path the search certified: its best schedule and its bracket.
-
-    Attributes
-    ----------
-    path : tuple of int
-        Node positions.
-    schedule : PathSchedule
-        Best schedule found (transfers only).
-    upper_mps, lower_mps : float
-        Total ΔV of that schedule with the node costs, and no schedule of the path costs
-        less [m/s].
-    """
-
-    path: tuple[int, ...]
-    schedule: PathSchedule
-    upper_mps: float
-    lower_mps: float
-
-
-@dataclass(frozen=True)
-class CertifiedResult:
-    """Best plan found and what is proven about the optimum.
-
-    Attributes
-    ----------
-    path : tuple of int
-        Node positions (empty when no plan was found).
-    schedule : PathSchedule or None
-    upper_mps : float
-        Total ΔV of the plan (transfers and operations) [m/s]; ``inf`` without a plan.
-    lower_mps : float
-        No plan costs less [m/s] (``inf``: proven infeasible).
-    status : {"optimal", "feasible", "infeasible", "no_plan"}
-        ``optimal``: within the requested gap; ``feasible``: a limit stopped the search;
-        ``infeasible``: proven that no plan exists; ``no_plan``: stopped before any plan.
-    log : list of dict
-    paths : tuple of CertifiedPath
-        Every path certified on the way that flies, cheapest first (the columns of a
-        campaign's master, :mod:`sdc_cvx.campaign`).
-    complete : bool
-        False when a limit (time, iterations, a failed MILP) ended the search rather
-        than its own criterion (an enumeration is then not known to be whole).
-    trace : tuple of (float, float, float)
-        ``(seconds, bound, plan)`` each time the bound or the plan changed, seconds from
-        the start of :func:`certify` (the setup included).
-    """
-
-    path: tuple[int, ...]
-    schedule: PathSchedule | None
-    upper_mps: float
-    lower_mps: float
-    status: str
-    log: list
-    milp_solves: int
-    cells: int
-    seconds: float
-    notes: tuple[str, ...] = ()
-    edges: int = 0
-    paths_certified: int = 0
-    paths: tuple[CertifiedPath, ...] = ()
-    complete: bool = True
-    trace: tuple = ()
-
-    @property
-    def gap_mps(self) -> float:
-        return self.upper_mps - self.lower_mps
-
-    @property
-    def gap_rel(self) -> float:
-        if not np.isfinite(self.upper_mps) or self.upper_mps == 0:
-            return np.inf if not np.isfinite(self.upper_mps) else 0.0
-        return max(self.gap_mps, 0.0) / self.upper_mps
-
-
-class _Partitions:
-    """Date cells of every debris, each a sorted list of [lo, hi] with a version counter."""
-
-    def __init__(self, n_debris, start, stop, count):
-        self.lo = [np.linspace(start[i], stop, count + 1)[:-1] for i in range(n_debris)]
-        self.hi = [np.linspace(start[i], stop, count + 1)[1:] for i in range(n_debris)]
-
-    def split(self, debris: int, cell: int, pieces: int = 2):
-        lo, hi = self.lo[debris][cell], self.hi[debris][cell]
-        edges = np.linspace(lo, hi, pieces + 1)
-        self.lo[debris] = np.r_[self.lo[debris][:cell], edges[:-1], self.lo[debris][cell + 1 :]]
-        self.hi[debris] = np.r_[self.hi[debris][:cell], edges[1:], self.hi[debris][cell + 1 :]]
-
-    def count(self) -> int:
-        return sum(len(c) for c in self.lo)
-
-
-class _Network:
-    """Time-expanded network over the current partitions: node ids, arcs and their bounds."""
-
-    def __init__(self, nodes: CertifiedNodes, legs_table: LegCosts, edge_from, edge_to,
-                 parts: _Partitions, alive_edges, deadline: float = np.inf):  # fmt: skip
-        n = len(nodes.ops_days)
-        self.n_debris = n
-        # node ids: starts 0..n-1, then the cells of each debris in order
-        self.offset = np.cumsum([n] + [len(parts.lo[i]) for i in range(n)])[:-1]
-        self.n_nodes = int(self.offset[-1] + len(parts.lo[n - 1])) if n else 0
-        self.node_debris = np.r_[np.arange(n), np.concatenate(
-            [np.full(len(parts.lo[i]), i) for i in range(n)])].astype(int)  # fmt: skip
-        self.node_lo = np.r_[nodes.ops_days, np.concatenate(parts.lo)]
-        self.node_hi = np.r_[nodes.ops_days, np.concatenate(parts.hi)]
-        self.node_cell = np.r_[np.full(n, -1), np.concatenate(
-            [np.arange(len(parts.lo[i])) for i in range(n)])].astype(int)  # fmt: skip
-        tails, heads, edges = [], [], []
-        for e in np.flatnonzero(alive_edges):
-            i, j = int(edge_from[e]), int(edge_to[e])
-            t_ids = np.r_[i, self.offset[i] + np.arange(len(parts.lo[i]))]
-            h_ids = self.offset[j] + np.arange(len(parts.lo[j]))
-            tt, hh = np.meshgrid(t_ids, h_ids, indexing="ij")
-            tt, hh = tt.ravel(), hh.ravel()
-            ok = self.node_hi[hh] - nodes.ops_days[j] - self.node_lo[tt] >= nodes.tmin_days
-            tails.append(tt[ok])
-            heads.append(hh[ok])
-            edges.append(np.full(int(ok.sum()), e))
-        tail = np.concatenate(tails) if tails else np.empty(0, dtype=int)
-        head = np.concatenate(heads) if heads else np.empty(0, dtype=int)
-        edge = np.concatenate(edges) if edges else np.empty(0, dtype=int)
-        bound = np.empty(len(edge))
-        for part in np.array_split(np.arange(len(edge)), max(1, len(edge) // BOUND_CHUNK)):
-            if time.perf_counter() >= deadline:
-                raise _OutOfTime(f"time limit reached while bounding the {len(edge)} arcs of "
-                                 "a network of date cells")  # fmt: skip
-            j = edge_to[edge[part]]  # in parts: the bound's temporaries stay small
-            bound[part] = leg_box_bound(
-                legs_table, edge[part], self.node_lo[tail[part]], self.node_hi[tail[part]],
-                self.node_lo[head[part]] - nodes.ops_days[j],
-                self.node_hi[head[part]] - nodes.ops_days[j], rule=nodes.rule, j2=nodes.j2,
-                t_min=nodes.tmin_days)  # fmt: skip
-        finite = np.isfinite(bound)
-        self.edge = edge[finite]
-        self.arcs = Arcs(tail[finite], head[finite], edge_from[self.edge], edge_to[self.edge],
-                         bound[finite] + nodes.cost_mps[edge_to[self.edge]])  # fmt: skip
-
-    def pruned(self, nodes: CertifiedNodes, start_allowed, upper: float):
-        """Arcs that can lie on a plan within ``upper``, and the bound they prove [m/s].
-
-        Leg 0 leaves a start node (its operations cost added to the arc), later legs
-        leave cells.  An arc leaves when the cheapest walk of L legs through it exceeds
-        ``upper``, then when the cheapest path does
-        (:mod:`~sdc_cvx.network.path_bounds`); the bound is the cheapest path of the
-        network (the cheapest walk when the paths are too many to label).
-        """
-        a = self.arcs
-        from_start = a.tail < self.n_debris
-        cost = np.where(from_start, a.cost + nodes.cost_mps[a.debris_from], a.cost)
-        priced = Arcs(a.tail, a.head, a.debris_from, a.debris_to, cost)
-        network = NetworkArcs(priced.tail, priced.head, priced.debris_from, priced.debris_to,
-                              priced.cost, self.n_nodes, np.asarray(start_allowed))  # fmt: skip
-        walks = walk_bounds(network, nodes.legs)
-        self.completion = walks[1]
-        through, cheapest = elementary_bounds(network, nodes.legs, self.node_debris, upper, walks)
-        if through is None:
-            through = walks[2]
-        keep = np.isfinite(through) & (through <= upper + 1e-9)  # inf: on no path
-        return priced.take(keep), cheapest
 
 
 class _Search:
@@ -297,7 +114,7 @@ class _Search:
         # the first network holds every edge: fewer cells when they are many (481 TLE
         # fragments: 230 880 edges, 2 cells each instead of 8 keeps it near 1.4 M arcs)
         cells = max(2, min(initial_cells, int(np.sqrt(FIRST_ARCS / max(len(self.edge_from), 1)))))
-        self.parts = _Partitions(n, nodes.ops_days, nodes.tmax_days, cells)
+        self.parts = DateCells(n, nodes.ops_days, nodes.tmax_days, cells)
         self.upper, self.path, self.schedule = np.inf, (), None
         self.settled: dict[tuple, float] = {}  # path -> its certified lower bound [m/s]
         self.schedules: dict[tuple, PathSchedule] = {}  # path -> its best schedule
@@ -305,6 +122,7 @@ class _Search:
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
         self.trace: list[tuple[float, float, float]] = []  # (clock, bound, plan) on a change
         self.completion = None  # per node, cheapest walk of k legs from it (network())
+        self.exact = None  # (settled paths, the last network's relaxation by labels, seconds)
         self.notes: list[str] = []
         self.limited = False  # a limit, not the search's own criterion, ended it
 
@@ -314,7 +132,7 @@ class _Search:
     def _setup_clock(self, every_s: float | None = None):
         """``LegCosts.build``'s chunk callback: the fraction done every ``every_s``, a word
         up front when the tables alone will outlast the time limit, and the limit itself
-        (:class:`_OutOfTime`)."""
+        (:class:`OutOfTime`)."""
         every_s = SETUP_PROGRESS_S if every_s is None else every_s
         started = last = time.perf_counter()
         warned = False
@@ -323,7 +141,7 @@ class _Search:
             nonlocal last, warned
             now = time.perf_counter()
             if now >= self.deadline and done < total:
-                raise _OutOfTime(f"time limit reached while building the edge cost tables "
+                raise OutOfTime(f"time limit reached while building the edge cost tables "
                                  f"({done} of {total} edges in {now - started:.0f} s)")  # fmt: skip
             need = (now - started) * total / max(done, 1)
             if not warned and done < total and started + need > self.deadline:
@@ -351,10 +169,10 @@ class _Search:
         return max(self.upper, self.ceiling)
 
     def allowed(self, upper: float, gap_rel: float) -> float:
-        return _allowed(upper, gap_rel, self.gap_abs)
+        return allowed_gap(upper, gap_rel, self.gap_abs)
 
     def within(self, lower: float, gap_rel: float) -> bool:
-        return _within(self.upper, lower, gap_rel, self.gap_abs)
+        return within_gap(self.upper, lower, gap_rel, self.gap_abs)
 
     def try_path(self, path, why: str) -> None:
         """Certify one path (its best schedule and its lower bound), and hold it if better."""
@@ -383,15 +201,20 @@ class _Search:
 
     def network(self):
         """Arcs that could be on a plan better than the one held, and the bound they prove
-        (the network's cheapest path: :meth:`_Network.pruned`)."""
+        (the relaxation over them when the labels solve it, else the network's cheapest
+        path: :meth:`CellNetwork.pruned`)."""
         alive = path_cost_floor(self.edge_from, self.edge_to, self.edge_floor,
                                 self.nodes.cost_mps, self.nodes.legs,
                                 first=self.nodes.first) <= self.level + 1e-9  # fmt: skip
-        net = _Network(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive,
+        net = CellNetwork(self.nodes, self.legs, self.edge_from, self.edge_to, self.parts, alive,
                        self.deadline)  # fmt: skip
-        arcs, network_lower = net.pruned(self.nodes, self.start_allowed, self.level)
+        started = time.perf_counter()
+        arcs, exact, network_lower = net.pruned(self.nodes, self.start_allowed, self.level,
+                                                self.settled)  # fmt: skip
         self.prove(min(network_lower, self.upper))
         self.completion = net.completion
+        self.exact = None if exact is None else (len(self.settled), exact,
+                                                 time.perf_counter() - started)  # fmt: skip
         return net, arcs, network_lower
 
     def prove(self, relaxation_bound: float) -> float:
@@ -403,8 +226,19 @@ class _Search:
         self.proven = proven
         return self.proven
 
+    def exact_relaxation(self) -> RelaxationResult | None:
+        """The relaxation of the last network solved exactly by labels (its cheapest path
+        that is not a settled one), or None when its labels were too many or paths were
+        settled since (the MILP then solves it)."""
+        if self.exact is None or self.exact[0] != len(self.settled):
+            return None
+        _, found, seconds = self.exact
+        report = SolveReport(Status.OPTIMAL, found.cost, found.cost, 0.0, 0, seconds, 0.0,
+                             LABELS, "cheapest path by labels")  # fmt: skip
+        return RelaxationResult(report, found.cost, found.debris, found.rows)
+
     def candidates(self, arcs, count: int):
-        return _beam(arcs, self.n, self.nodes, self.start_allowed, exclude=self.settled,
+        return beam_paths(arcs, self.n, self.nodes, self.start_allowed, exclude=self.settled,
                      count=count, completion=self.completion)  # fmt: skip
 
     def open_paths(self, beam, gap_rel: float):
@@ -428,10 +262,6 @@ class _Search:
         return tuple(sorted(out, key=lambda c: c.upper_mps))
 
 
-class _OutOfTime(Exception):
-    """The time limit ran out during the setup, before any plan."""
-
-
 SETUP_PROGRESS_S = 5.0
 """Seconds between two progress lines of the edge cost tables."""
 
@@ -444,7 +274,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             max_iterations: int = 500, initial_cells: int = INITIAL_CELLS,
             split_pieces: int = 2, gap_abs_mps: float = PATH_TOL_MPS,
             stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
-            known=None, path_tol_rel: float | None = None,
+            known=None, path_tol_rel: float | None = None, date_grid: bool | None = None,
             stop: Callable[[], bool] | None = None) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
@@ -491,6 +321,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     path_tol_rel : float, optional
         Relative tolerance of each path's schedule (default ``gap_rel / 2``: a path
         needs no finer certificate than the mission's).
+    date_grid : bool, optional
+        Seed the search with the best plans of a beam search over a grid of dates
+        (:mod:`~sdc_cvx.planner.certified.date_grid`): a few seconds that make the first
+        relaxations small.  Default: from :data:`GRID_LEGS` legs on.
     stop : callable, optional
         Asked between steps; True ends the search as a time limit does (the best plan
         with its gap): the command line's Ctrl-C.
@@ -520,7 +354,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                          names=names, gap_abs_mps=gap_abs_mps,
                          path_tol_rel=gap_rel / 2 if path_tol_rel is None else path_tol_rel,
                          ceiling_mps=ceiling_mps, known=known)  # fmt: skip
-    except _OutOfTime as err:
+    except OutOfTime as err:
         return CertifiedResult((), None, np.inf, -np.inf, "no_plan", [], 0, 0,
                                time.perf_counter() - clock, (str(err),),
                                complete=False)  # fmt: skip
@@ -531,6 +365,12 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         for seed in seeds:
             if len(seed) == nodes.legs + 1:
                 search.try_path(seed, "seed")
+        use_grid = nodes.legs >= GRID_LEGS if date_grid is None else date_grid
+        if use_grid:  # near-optimal plans before any network: they prune
+            search.say("  cheap plans from a grid of dates (a beam search)")
+            for plan in grid_plans(search.legs, search.edge_from, search.edge_to, nodes,
+                                   deadline=deadline):  # fmt: skip
+                search.try_path(plan.path, "date grid")
         # cheap plans first, from a beam search over the first network: they prune the rest
         _, arcs, _ = search.network()
         for _, path, _ in search.candidates(arcs, SEED_PATHS):
@@ -550,8 +390,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                     break
                 for _, path, _ in open_paths if enumerating else open_paths[:1]:
                     search.try_path(path, "network")
-                _refine(search.parts, net, arcs, np.concatenate([rows for *_, rows in open_paths]),
-                        split_pieces)  # fmt: skip
+                chosen = np.concatenate([rows for *_, rows in open_paths])
+                refine_cells(search.parts, net, arcs, chosen, split_pieces)
                 search.say(f"  refine the cells of {len(open_paths)} paths whose bounds (from "
                            f"{open_paths[0][0]:.2f} m/s) are under the plan's "
                            f"{search.upper:.2f} m/s: {search.parts.count()} cells")  # fmt: skip
@@ -569,17 +409,19 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                 search.notes.append(f"time limit ({time_limit_s:g} s) reached")
                 search.limited = True
                 break
-            start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
-            search.say(
-                f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
-                f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"
-            )
-            result = solve_relaxation(
-                arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
-                solver=_with_limit(solver, min(remaining, step_limit)),
-                must_visit=nodes.must_visit, cuts=list(search.settled),
-                solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
-            milp_solves += 1
+            result = search.exact_relaxation()  # by labels; None: a MILP solves it
+            if result is None:
+                start = beam[:1] or search.candidates(arcs, 1)  # the MILP's first incumbent
+                search.say(
+                    f"  relaxation MILP {milp_solves + 1}: {len(arcs)} arcs over "
+                    f"{search.parts.count()} date cells (limit {min(remaining, step_limit):.0f} s)"
+                )
+                result = solve_relaxation(
+                    arcs, n_nodes=net.n_nodes, n_debris=search.n, legs=nodes.legs,
+                    solver=replace(solver, time_limit_s=max(min(remaining, step_limit), 1.0)),
+                    must_visit=nodes.must_visit, cuts=list(search.settled),
+                    solver_gap=gap_rel / 10, start=start[0][2] if start else None)  # fmt: skip
+                milp_solves += 1
             search.notes += [m for m in result.report.fallbacks if m not in search.notes]
             stopped = result.report.status.value in ("time_limit", "no_solution")
             out_of_time = time.perf_counter() >= deadline
@@ -605,9 +447,13 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             rows.append(row)
             if on_iteration is not None:
                 on_iteration(row)
+            how = (
+                f"labels {result.report.solve_seconds:.1f} s"
+                if result.report.backend == LABELS
+                else f"MILP {result.report.solve_seconds:.1f} s, {result.report.nodes} nodes"
+            )
             search.say(f"  bound {lower:.2f}, plan {search.upper:.2f} m/s ({len(arcs)} arcs, "
-                       f"{search.parts.count()} cells, MILP {result.report.solve_seconds:.1f} s, "
-                       f"{result.report.nodes} nodes)")  # fmt: skip
+                       f"{search.parts.count()} cells, {how})")  # fmt: skip
             if enumerating:
                 if result.lower_mps > ceiling_mps:  # every path under the ceiling is settled
                     break
@@ -623,11 +469,11 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                 search.notes.append("interrupted: the best plan so far")
                 search.limited = True
                 break
-            _refine(search.parts, net, arcs, result.arcs, split_pieces)
+            refine_cells(search.parts, net, arcs, result.arcs, split_pieces)
         else:
             search.notes.append(f"iteration limit ({max_iterations}) reached")
             search.limited = True
-    except _OutOfTime as err:
+    except OutOfTime as err:
         search.notes.append(str(err))
         search.limited = True
     status = search.status(gap_rel)
@@ -646,73 +492,3 @@ def _settles(schedule: PathSchedule, cutoff: float, tol_rel: float) -> bool:
     tol = max(PATH_TOL_MPS, tol_rel * schedule.upper_mps) if schedule.feasible else PATH_TOL_MPS
     return schedule.upper_mps - schedule.lower_mps <= tol * (1 + 1e-9) or \
         schedule.lower_mps > cutoff  # fmt: skip
-
-
-def _allowed(upper, gap_rel, gap_abs=PATH_TOL_MPS) -> float:
-    """The gap a certificate may leave below a plan of ``upper`` m/s [m/s]."""
-    return max(gap_rel * abs(upper), gap_abs)
-
-
-def _within(upper, lower, gap_rel, gap_abs=PATH_TOL_MPS) -> bool:
-    allowed = _allowed(upper, gap_rel, gap_abs) * (1 + 1e-9)
-    return bool(np.isfinite(upper) and upper - lower <= allowed)
-
-
-def _with_limit(solver: SolverOptions, remaining: float) -> SolverOptions:
-    from dataclasses import replace
-
-    return replace(solver, time_limit_s=max(remaining, 1.0))
-
-
-def _refine(parts: _Partitions, net: _Network, arcs: Arcs, chosen, pieces: int = 2):
-    """Halve the date cells the relaxation's arcs leave from and arrive in."""
-    cells = set()
-    for a in chosen:
-        for node in (arcs.tail[a], arcs.head[a]):
-            if net.node_cell[node] >= 0:
-                cells.add((int(net.node_debris[node]), int(net.node_cell[node])))
-    for debris, cell in sorted(cells, key=lambda dc: (dc[0], -dc[1])):
-        parts.split(debris, cell, pieces)
-
-
-def _beam(
-    arcs: Arcs,
-    n_debris: int,
-    nodes: CertifiedNodes,
-    start_allowed,
-    *,
-    exclude=(),
-    width: int = BEAM_WIDTH,
-    count: int = 1,
-    completion=None,
-) -> list[tuple[float, tuple, tuple]]:
-    """Cheapest simple paths under the arc bounds, leg by leg (a beam search).
-
-    Partial paths are ranked by their cost plus ``completion[k][node]``, the cheapest walk
-    of the k legs left from their last node (A*-like; without it, by cost so far).
-
-    Returns up to ``count`` distinct debris paths not in ``exclude`` that visit
-    ``must_visit``, as ``(cost, debris path, rows of arcs)``, cheapest first.
-    """
-    by_tail: dict[int, list[int]] = {}
-    for row in range(len(arcs)):
-        by_tail.setdefault(int(arcs.tail[row]), []).append(row)
-    L = nodes.legs
-    beam = [(0.0, 0.0, (int(i),), int(i), ()) for i in np.flatnonzero(start_allowed)]
-    for k in range(L):
-        rest = completion[L - 1 - k] if completion is not None else None
-        grown = [(cost + arcs.cost[r] + (rest[arcs.head[r]] if rest is not None else 0.0),
-                  cost + arcs.cost[r], path + (int(arcs.debris_to[r]),), int(arcs.head[r]),
-                  rows + (r,))
-                 for _, cost, path, node, rows in beam for r in by_tail.get(node, ())
-                 if arcs.debris_to[r] not in path]  # fmt: skip
-        beam = heapq.nsmallest(width, grown)
-    required, excluded = set(nodes.must_visit), set(exclude)
-    out, seen = [], set()
-    for _, cost, path, _, rows in sorted(beam):
-        if path not in seen and path not in excluded and required <= set(path):
-            seen.add(path)
-            out.append((float(cost), path, rows))
-        if len(out) >= count:
-            break
-    return out

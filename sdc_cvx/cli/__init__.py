@@ -1,0 +1,49 @@
+"""Command line: ``python -m sdc_cvx`` (or ``sdc-cvx``).
+
+Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``sweep STUDY.toml``,
+``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``.  Exit codes: 0 success,
+2 invalid input (nothing written), 3 infeasible mission or campaign, 4 solver failure or a
+full disk, 130 interrupted (Ctrl-C) with nothing written.
+
+The group :func:`main` gathers the commands of :mod:`.run`, :mod:`.campaign`,
+:mod:`.sweep` and :mod:`.tables` (``edges``, ``catalog``, ``solvers``); they share
+:mod:`.exits` (the exit codes), :mod:`.options`, :mod:`.reading` (the scenario, catalog
+and candidates, read or exit 2) and :mod:`.progress` (a run's progress and its log).
+Each command imports what it uses when it runs: ``--help`` stays light.
+"""
+
+from __future__ import annotations
+
+import click
+
+from .campaign import campaign_command
+from .exits import EXIT_CODES, INFEASIBLE, INPUT_ERROR, INTERRUPTED, SOLVER_FAILED, exit_code
+from .progress import RunProgress
+from .run import run_command
+from .sweep import sweep_command
+from .tables import catalog_command, edges_command, solvers_command
+
+__all__ = [
+    "EXIT_CODES",
+    "INFEASIBLE",
+    "INPUT_ERROR",
+    "INTERRUPTED",
+    "SOLVER_FAILED",
+    "RunProgress",
+    "exit_code",
+    "main",
+]
+
+
+@click.group()
+@click.version_option(package_name="sdc_cvx")
+def main():
+    """Plan active debris removal missions (Cerf's method, CVXPY + MILP)."""
+
+
+main.add_command(run_command)
+main.add_command(campaign_command)
+main.add_command(sweep_command)
+main.add_command(edges_command)
+main.add_command(catalog_command)
+main.add_command(solvers_command)

@@ -1,0 +1,164 @@
+"""``campaign``: plan K missions on given launch days and write the campaign folder."""
+
+from __future__ import annotations
+
+import contextlib
+import importlib.util
+import sys
+from pathlib import Path
+
+import click
+
+from ..errors import MissionError, MissionInfeasible, SolverFailure, SweepError
+from .exits import (
+    INPUT_ERROR,
+    INTERRUPTED,
+    SOLVER_FAILED,
+    SYSTEM_ERRNOS,
+    exit_code,
+    fail,
+    interrupted_exit,
+)
+from .options import out_option, parallel_options
+from .progress import RunProgress, open_progress_log
+from .reading import build_scenario, check_backend, read_catalog, select_candidates
+
+
+@click.command("campaign")
+@click.argument("scenario_file", metavar="SCENARIO.toml", type=click.Path(dir_okay=False))
+@out_option("sdc_campaign_")
+@parallel_options
+@click.option(
+    "--time-limit",
+    "time_limit_s",
+    type=float,
+    default=None,
+    help="Time limit of the whole search [s]; the best campaign is then returned with its gap.",
+)
+@click.option(
+    "--gap", type=float, default=None, help="Relative gap of a certified answer [0.001 = 0.1 %]."
+)
+@click.option("--quiet", is_flag=True, help="No progress, only the summary.")
+@click.option("--json", "json_out", is_flag=True,
+              help="Write campaign.json to stdout (and nothing else there).")  # fmt: skip
+@click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
+@click.option("--progress/--no-progress", default=None, hidden=True)
+def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, scheduler, quiet,
+                     json_out, svg, progress):  # fmt: skip
+    """Plan a removal campaign: K missions on given launch days, each debris removed once.
+
+    SCENARIO.toml has a [campaign] table (launch_days, or missions with first_launch_day
+    and period_days; n and tmax_days per mission; must_remove) and the usual [catalog],
+    [mission] (every mission's defaults), [solver] and [selection] tables.  Writes a
+    campaign folder: campaign.json, missions.csv, history.csv, campaign.log, the figures
+    and one run folder per mission.  Exit codes: 2 invalid input (nothing written),
+    3 infeasible campaign (campaign.json says why), 4 solver failure.
+    """
+    from ..campaign.search import solve_campaign
+    from ..report.campaign_folder import (
+        campaign_folder_problem,
+        write_infeasible_campaign,
+    )
+    from ..report.run_folder import new_run_folder
+
+    if scheduler is not None and importlib.util.find_spec("distributed") is None:
+        fail("--scheduler needs dask.distributed, which is not installed here: "
+             "pip install 'sdc_cvx[dask]'")  # fmt: skip
+    if gap is not None and not 0 <= gap < 1:
+        fail(f"--gap must be in [0, 1), got {gap:g}")
+    if time_limit_s is not None and not time_limit_s > 0:
+        fail(f"--time-limit must be > 0 seconds, got {time_limit_s:g}")
+    scenario = build_scenario(scenario_file)
+    if scenario.campaign is None:
+        fail(
+            f"{scenario_file} has no [campaign] table: add launch_days = [0.0, 365.25] (or "
+            "missions = K) to plan a campaign (see examples/campaign_gtoc9.toml), or use "
+            "'run' for one mission"
+        )
+    if out_dir is not None:
+        problem = campaign_folder_problem(out_dir)
+        if problem is not None:
+            fail(f"--out: {problem}")
+    campaign = scenario.campaign
+    gap = scenario.solver.gap if gap is None else gap
+    time_limit_s = scenario.solver.time_limit_s if time_limit_s is None else time_limit_s
+    catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
+
+    def info(message: str) -> None:
+        if not quiet:
+            click.echo(message, err=True)
+
+    catalog, _ = select_candidates(catalog, scenario, info)
+    try:
+        campaign.check_candidates(catalog)
+    except MissionError as err:
+        fail(f"{scenario_file}: campaign: {err} (catalog: {catalog.source})")
+    check_backend(scenario.solver)
+    header = (
+        f"Campaign of {len(campaign)} missions (launch days "
+        f"{', '.join(f'{d:g}' for d in campaign.launch_days)}; n = "
+        f"{', '.join(str(m.n) for m in campaign.missions)}) from {len(catalog)} candidates of "
+        f"{catalog.source}; gap {gap:g}."
+    )
+    info(header)
+    show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
+    live_log, stream, made = open_progress_log(out_dir)
+    folder = Path(out_dir) if out_dir else None
+    start_utc = None if catalog.start is None else catalog.start.isoformat()
+    with RunProgress(show_progress, live_log=live_log, stream=stream, made=made) as steps:
+        steps.say(header, show=False)
+        steps.set_phase("campaign: each launch alone, then the greedy campaign")
+        try:
+            solution = solve_campaign(catalog, campaign, solver=scenario.solver, gap=gap,
+                                      time_limit_s=time_limit_s, workers=workers,
+                                      scheduler=scheduler, log=steps.search_step)  # fmt: skip
+        except MissionInfeasible as err:
+            steps.say(f"infeasible: {err}")
+            try:
+                folder = folder or new_run_folder(prefix="sdc_campaign_")
+                write_infeasible_campaign(folder, str(err), start_utc=start_utc,
+                                          campaign=campaign.to_dict(),
+                                          scenario_toml=scenario.to_toml(),
+                                          log=steps.log_text())  # fmt: skip
+                steps.discard_live_log()
+            except OSError as write_err:
+                click.echo(f"warning: cannot write {folder}: {write_err}", err=True)
+            fail(f"infeasible campaign: {err} ({folder}/campaign.json)", exit_code(err))
+        except KeyboardInterrupt:
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            steps.__exit__(None, None, None)  # the log closed before the hard exit
+            interrupted_exit(f"interrupted: nothing written{kept}")
+        except (SolverFailure, SweepError) as err:
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            fail(f"solver failure: {err}{kept}", exit_code(err))
+        steps.set_phase("writing the campaign folder")
+        steps.say(solution.summary(), show=False)
+    try:
+        folder = folder or new_run_folder(prefix="sdc_campaign_")
+        solution.save(folder, formats=("png", "svg") if svg else ("png",),
+                      scenario_toml=scenario.to_toml(), log=steps.log_text())  # fmt: skip
+        steps.discard_live_log()
+    except (OSError, KeyboardInterrupt) as err:
+        steps.discard_live_log()
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_campaign_* folder, if still empty
+        if isinstance(err, KeyboardInterrupt):
+            fail(f"interrupted while writing: nothing written to {folder}", INTERRUPTED)
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        message = err.strerror or str(err)
+        if not message.startswith("cannot write"):
+            message = f"cannot write the campaign folder {folder or '.'}: {message}"
+        fail(message, code)
+    lines = [solution.summary()]
+    if start_utc:
+        lines.append(f"start     {start_utc} (day 0 of the launch days)")
+    lines.append(f"results   {folder}/campaign.json")
+    if json_out:
+        click.echo(solution.to_json())
+        for line in lines:
+            info(line)
+    else:
+        click.echo("\n".join(lines))
+    if not solution.certified:
+        click.echo(f"warning: {solution.status}; see the notes in campaign.json", err=True)

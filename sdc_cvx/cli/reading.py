@@ -1,0 +1,104 @@
+"""What the commands read: the scenario with the flags applied, its catalog, its backend
+and the candidates it selects; a bad input ends the command with exit 2 and its message.
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import TYPE_CHECKING
+
+import click
+
+from ..errors import CatalogError, CatalogWarning, ScenarioError
+from ..milp.types import MILP_BACKENDS
+from .exits import fail
+
+if TYPE_CHECKING:  # the commands import what they use: --help stays light
+    import pandas as pd
+
+    from ..inputs.catalog import Catalog
+    from ..milp.types import SolverOptions
+    from ..study.scenario import Scenario
+
+
+def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
+    """The scenario file (or the paper case) with the command-line values applied."""
+    from ..study.scenario import Scenario, apply_overrides
+
+    try:
+        scenario = Scenario() if scenario_file is None else Scenario.load(scenario_file)
+        return apply_overrides(scenario, overrides, origin="command line")
+    except ScenarioError as err:
+        fail(str(err))
+
+
+def read_catalog(scenario: Scenario, on_invalid: str = "raise") -> Catalog:
+    """The scenario's catalog, validated; exit 2 with its problems if invalid.
+
+    With ``on_invalid="set aside"`` the element sets that are not orbits of this model are
+    kept aside for :func:`select_candidates` (the filters act first).
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", CatalogWarning)
+        try:
+            catalog = scenario.load_catalog(on_invalid=on_invalid)
+        except (CatalogError, ScenarioError) as err:
+            fail(str(err))
+    for warning in caught:
+        if issubclass(warning.category, CatalogWarning):
+            click.echo(f"warning: {warning.message}", err=True)
+        else:
+            warnings.showwarning(warning.message, warning.category, warning.filename,
+                                 warning.lineno)  # fmt: skip
+    return catalog
+
+
+def check_backend(solver: SolverOptions) -> None:
+    """Exit 2 unless the chosen backend (or one of its fallbacks) is installed."""
+    from ..milp.backends import installed_backends
+
+    installed = set(installed_backends())
+    usable_chain = [b for b in (solver.backend, *solver.fallback) if b in installed]
+    if usable_chain and solver.backend not in installed:
+        click.echo(f"warning: {solver.backend} is not installed here; the fallback "
+                   f"{usable_chain[0]} will be used", err=True)  # fmt: skip
+    if not usable_chain:
+        usable = ", ".join(name for name in MILP_BACKENDS if name in installed) or "none"
+        fail(
+            f"solver.backend {solver.backend!r} is not installed here; installed MILP "
+            f"backends: {usable} (see 'sdc-cvx solvers')"
+        )
+
+
+def select_candidates(catalog: Catalog, scenario: Scenario, echo) -> tuple[Catalog, pd.DataFrame]:
+    """The candidates kept by the scenario's selection; exit 2 if none or a bad pattern.
+
+    ``echo`` gets the "kept K of N candidates (...)" line when a filter is set or a
+    debris is dropped (near-polar orbits and e > 0.05 are always dropped).  Element sets
+    of ``catalog.invalid`` that the filters keep get one warning line each (file, line,
+    catalogue number, reason) and a count; with ``catalog.strict`` (``--strict``) they
+    are refused (exit 2).
+    """
+    from ..inputs.selection import summary as selection_summary
+    from ..study.scenario import Selection
+
+    selection = scenario.selection
+    try:
+        kept, report = selection.apply(catalog, strict=scenario.catalog_strict)
+    except CatalogError as err:
+        fail(str(err))
+    except ValueError as err:
+        fail(f"candidate selection: {err}")
+    invalid = report[report["checks"] == "invalid"]
+    for reason in invalid["reason"]:
+        click.echo(f"warning: dropped, not an orbit of this model: {reason}", err=True)
+    if len(invalid):
+        click.echo(f"warning: {len(invalid)} element set(s) in the selection dropped: not "
+                   "orbits of this model (README, 'Physical domain'); --strict refuses them",
+                   err=True)  # fmt: skip
+    line = selection_summary(kept, report)
+    if len(kept) == 0:
+        fail(f"no candidate left in {catalog.source}: {line}")
+    if len(report) or selection != Selection():
+        echo(line)
+    return kept, report

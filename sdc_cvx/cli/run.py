@@ -1,0 +1,221 @@
+"""``run``: plan one mission and write its run folder."""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import warnings
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import click
+
+from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, SolverFailure
+from ..milp.types import DEFAULT_BACKEND
+from .exits import INPUT_ERROR, INTERRUPTED, SOLVER_FAILED, SYSTEM_ERRNOS, exit_code, fail
+from .options import catalog_options, scenario_argument, selection_options, selection_overrides
+from .progress import RunProgress, interruptible, open_progress_log
+from .reading import build_scenario, check_backend, read_catalog, select_candidates
+
+if TYPE_CHECKING:
+    from ..inputs.catalog import Catalog
+
+
+@click.command("run")
+@scenario_argument
+@catalog_options
+@selection_options
+@click.option("--n", type=int, default=None, help="Number of debris to remove [5].")
+@click.option("--tmax-days", type=float, default=None, help="Mission duration limit [365.25 days].")
+@click.option("--deorbit-days", type=float, default=None, help="Operations time per debris [0].")
+@click.option("--preopt-days", type=float, default=None, help="Pre-optimisation bound T0 [61].")
+@click.option(
+    "--dv-max", "dv_max_mps", type=float, default=None, help="Edge cost filter [1000 m/s]."
+)
+@click.option(
+    "--min-transfer-days", type=float, default=None, help="Minimum transfer duration [0 days]."
+)
+@click.option("--backend", default=None, help=f"MILP backend, a CVXPY name [{DEFAULT_BACKEND}].")
+@click.option(
+    "--method",
+    type=click.Choice(["certified", "paper"]),
+    default=None,
+    help="certified: the optimum with a proven bound [default]; paper: Cerf's local method.",
+)
+@click.option(
+    "--gap", type=float, default=None, help="Relative gap of a certified answer [0.001 = 0.1 %]."
+)
+@click.option(
+    "--time-limit",
+    "time_limit_s",
+    type=float,
+    default=None,
+    help="Time limit [s]: of the whole run (certified; it returns its best plan and gap), "
+    "or of each MILP (paper).",
+)
+@click.option("--mip-gap", type=float, default=None, help="Relative MIP gap [1e-6].")
+@click.option("--threads", type=int, default=None, help="Threads of the MILP backend.")
+@click.option(
+    "--fallback",
+    "fallback",
+    multiple=True,
+    metavar="BACKEND",
+    help="Backend tried next when the previous one fails (repeatable).",
+)
+@click.option(
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Output folder [a new sdc_run_* folder here].",
+)
+@click.option("--quiet", is_flag=True, help="No progress, only the summary.")
+@click.option(
+    "--json",
+    "json_out",
+    is_flag=True,
+    help="Write the solution JSON to stdout (and nothing else there).",
+)
+@click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
+@click.option("--verbose", is_flag=True, default=None,
+              help="Show the MILP backend's own log (on stderr).")  # fmt: skip
+@click.option(
+    "--progress/--no-progress",
+    default=None,
+    hidden=True,
+    help="Force the per-iteration lines on or off [on when stderr is a terminal].",
+)
+def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km, inclination_deg,
+        max_eccentricity, ids, exclude_ids, names, types, strict, n, tmax_days, deorbit_days,
+        preopt_days, dv_max_mps,
+        min_transfer_days, backend, method, gap, time_limit_s, mip_gap, threads, fallback,
+        out_dir, quiet, json_out, svg, verbose, progress):  # fmt: skip
+    """Select, order and plan the transfers; write solution.json and tables to a run folder.
+
+    SCENARIO.toml (optional; default the paper's case) gives the catalog, mission,
+    solver and candidate filters; the options override it ([defaults] apply when neither
+    sets a value).  The run folder also gets scenario.toml, the scenario as used.  Exit
+    codes: 2 invalid input (nothing written), 3 infeasible mission, 4 solver failure.
+    """
+    from ..network.edges import preoptimize
+    from ..planner.api import ignored_options, solve
+    from ..report.run_folder import new_run_folder, out_folder_problem, write_run
+    from ..solution import RunStatus
+
+    # a plan, but the run did not settle: say so (a new solved status needs no warning)
+    unsettled = {RunStatus.CONVERGED_UNCONFIRMED, RunStatus.ITERATION_LIMIT, RunStatus.TIME_LIMIT,
+                 RunStatus.FEASIBLE, RunStatus.STALLED}  # fmt: skip
+
+    scenario = build_scenario(
+        scenario_file, catalog_path=catalog_path, catalog_format=catalog_format,
+        catalog_start=start, n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
+        preopt_days=preopt_days, dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days,
+        backend=backend, method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
+        threads=threads, verbose=verbose or None,
+        fallback=tuple(fallback) or None,
+        **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
+                              names, types, strict),
+    )  # fmt: skip
+    if out_dir is not None:  # before the solve: a bad --out must not cost a solve
+        problem = out_folder_problem(Path(out_dir))
+        if problem is not None:
+            fail(f"--out: {problem}")
+    catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
+    mission, solver = scenario.mission, scenario.solver
+
+    def info(message: str) -> None:
+        if not quiet:
+            click.echo(message, err=True)
+
+    catalog, _ = select_candidates(catalog, scenario, info)
+    try:
+        mission.check_candidates(catalog)
+    except MissionError as err:
+        where = f"{scenario.source}: " if scenario.source is not None else ""
+        problems = "; ".join(f"mission.{problem}" for problem in str(err).split("; "))
+        fail(f"{where}{problems} (catalog: {catalog.source})")
+    check_backend(solver)
+
+    show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
+    header = run_header(catalog, mission, solver)
+    info(header)
+    # the progress goes to OUT.log beside the run folder while the run lasts (a killed run
+    # leaves it there, the next run into OUT replaces it), then into the folder as run.log;
+    # it also locks OUT against a second run at once
+    live_log, stream, made = open_progress_log(out_dir)
+    with RunProgress(show_progress, live_log=live_log, stream=stream, made=made) as steps:
+        steps.say(header, show=False)
+        steps.set_phase(
+            "certified search: leg costs of every pair, cheap paths, then the first relaxation"
+            if solver.method == "certified"
+            else "seeding: re-optimising cheap paths, then building the first MILP"
+        )
+        for message in ignored_options(mission, solver):  # said once, up front
+            click.echo(f"warning: {message}", err=True)
+            steps.say(f"warning: {message}", show=False)
+        try:
+            with warnings.catch_warnings(), interruptible(steps, solver.method) as stop:
+                warnings.simplefilter("ignore", IgnoredOptionWarning)
+                solution = solve(catalog, mission, solver=solver, progress=steps.iteration,
+                                 log=steps.search_step, stop=stop)  # fmt: skip
+        except KeyboardInterrupt:
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            fail(f"interrupted: nothing written{kept}", INTERRUPTED)
+        except MissionInfeasible as err:
+            steps.discard_live_log()  # a proven answer: the message says it all
+            fail(f"infeasible mission: {err}", exit_code(err))
+        except SolverFailure as err:
+            kept = f" (progress in {live_log})" if live_log is not None else ""
+            fail(f"solver failure: {err}{kept}", exit_code(err))
+        steps.set_phase("writing the run folder")
+        steps.say(solution.summary(), show=False)
+        edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+    folder = Path(out_dir) if out_dir else None
+    try:
+        folder = folder or new_run_folder()
+        write_run(folder, solution, edge_table, scenario_toml=scenario.to_toml(),
+                  catalog=catalog, formats=("png", "svg") if svg else ("png",),
+                  log=steps.log_text())  # fmt: skip
+        steps.discard_live_log()
+    except KeyboardInterrupt:
+        steps.discard_live_log()
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_run_* folder, if still empty
+        fail(f"interrupted while writing: nothing written to {folder} (an earlier run folder "
+             "there is kept whole)", INTERRUPTED)  # fmt: skip
+    except OSError as err:
+        steps.discard_live_log()  # nothing is kept beside the folder
+        if out_dir is None and folder is not None:
+            with contextlib.suppress(OSError):
+                folder.rmdir()  # the new sdc_run_* folder, if still empty
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        message = err.strerror or str(err)
+        if not message.startswith("cannot write"):
+            message = f"cannot write the run folder {folder or '.'}: {message}"
+        fail(message, code)
+    start = None  # the mission start date the RAANs refer to (Catalog.start)
+    if catalog.start is not None:
+        start = f"start     {catalog.start.isoformat()} (the catalog's RAANs are at this date)"
+    if json_out:
+        click.echo(solution.to_json())
+        info(solution.summary())
+        if start:
+            info(start)
+        info(f"results   {folder}/solution.json")
+    else:
+        click.echo(solution.summary())
+        if start:
+            click.echo(start)
+        click.echo(f"results   {folder}/solution.json")
+    if not solution.status.is_solved or solution.status in unsettled:
+        click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
+
+
+def run_header(catalog: Catalog, mission, solver) -> str:
+    """The first line of ``run``: what is planned, in a sentence."""
+    start = "" if catalog.start is None else f", RAANs at {catalog.start.isoformat()}"
+    return (
+        f"Choosing {mission.n} of {len(catalog)} debris from {catalog.source}{start}; "
+        f"T_max {mission.tmax_days:g} days; MILP backend {solver.backend}."
+    )

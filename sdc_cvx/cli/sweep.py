@@ -1,0 +1,71 @@
+"""``sweep``: run a trade study, one result row per scenario, resumable."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+
+import click
+
+from ..errors import ScenarioError, SweepError
+from .exits import INPUT_ERROR, SOLVER_FAILED, SYSTEM_ERRNOS, fail, interrupted_exit
+from .options import out_option, parallel_options
+
+
+@click.command("sweep")
+@click.argument("study_file", metavar="STUDY.toml", type=click.Path(dir_okay=False))
+@out_option("sdc_sweep_")
+@parallel_options
+@click.option("--resume", is_flag=True, help="Skip the scenarios already finished in --out.")
+@click.option("--progress/--no-progress", default=None, hidden=True)
+def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
+    """Run a trade study: a base scenario and a grid / list of overrides, one row each.
+
+    Every scenario is validated before any solve; each result is written as soon as it
+    finishes (results.csv and one solution.json per scenario), so --resume after an
+    interruption only runs what is missing.
+    """
+    from ..report.run_folder import new_run_folder
+    from ..study.results import SOLVED_STATUSES
+    from ..study.runner import run_study, sweep_folder_problem
+    from ..study.study import load_study
+
+    if resume and out_dir is None:
+        fail("--resume needs --out, the folder of the sweep to finish")
+    if scheduler is not None and importlib.util.find_spec("distributed") is None:
+        fail("--scheduler needs dask.distributed, which is not installed here: "
+             "pip install 'sdc_cvx[dask]'")  # fmt: skip
+    try:
+        study = load_study(study_file)
+    except (ScenarioError, SweepError, OSError) as err:
+        fail(str(err))
+    if out_dir is not None:
+        out = Path(out_dir)
+        if out.exists() and not out.is_dir():
+            fail(f"--out: {out} is a file, not a folder")
+        if (out / "results.csv").exists() and not resume:
+            fail(f"--out: {out} already holds results.csv: add --resume to finish that "
+                 "sweep, or choose a new folder")  # fmt: skip
+        problem = sweep_folder_problem(out)
+        if problem is not None:
+            fail(f"--out: {problem}")
+    folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
+    show = sys.stderr.isatty() if progress is None else progress
+    try:
+        results = run_study(study, folder, workers=workers, scheduler=scheduler, resume=resume,
+                            progress=show)  # fmt: skip
+    except SweepError as err:
+        fail(str(err))
+    except OSError as err:  # a full disk while writing results
+        code = SOLVER_FAILED if err.errno in SYSTEM_ERRNOS else INPUT_ERROR
+        fail(f"cannot write the sweep folder {folder}: {err.strerror or err}"
+             + (f" ({err.filename})" if err.filename else "")
+             + f"; finish later with --resume --out {folder}", code)  # fmt: skip
+    except KeyboardInterrupt:
+        interrupted_exit(f"interrupted: the scenarios finished so far are in "
+                         f"{folder}/results.csv; finish the others with: python -m sdc_cvx "
+                         f"sweep {study_file} --resume --out {folder}")  # fmt: skip
+    done = results["status"].isin(SOLVED_STATUSES)
+    click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
+               f"{folder}/results.csv")  # fmt: skip

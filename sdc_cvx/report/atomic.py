@@ -1,0 +1,49 @@
+"""The one atomic writer of a file: a temporary file beside it, then a rename.
+
+The run folder (:mod:`sdc_cvx.report.run_folder`), the figures
+(:mod:`sdc_cvx.report.plots`) and the sweep folders all go through :func:`write_atomic`,
+so a reader never sees a truncated file.  Files are created with the permissions ``open``
+would give them (0666 less the umask: 0644 under the usual 022), not ``mkstemp``'s 0600.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import BinaryIO
+
+
+def file_mode(mode: int = 0o666) -> int:
+    """``mode`` less the process umask: the permissions ``open`` would give a new file."""
+    umask = os.umask(0)
+    os.umask(umask)
+    return mode & ~umask
+
+
+def write_atomic(
+    path: Path, content: str | Callable[[BinaryIO], None], *, mode: int | None = None
+) -> None:
+    """Write ``content`` to ``path`` so that readers never see a truncated file.
+
+    The one atomic writer of sdc_cvx (a temporary file in the same folder, then
+    ``os.replace``).  ``content`` is text (written as UTF-8) or a function that writes
+    the bytes to the binary stream it is given (a figure's ``savefig``).  ``mode``: the
+    permissions of the file; default those of a new file under the umask (0644 under
+    022), not the 0600 of the temporary file.
+    """
+    path = Path(path)
+    handle, temp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        if callable(content):
+            with os.fdopen(handle, "wb") as stream:
+                content(stream)
+        else:
+            with os.fdopen(handle, "w", encoding="utf-8") as stream:
+                stream.write(content)
+        os.chmod(temp, file_mode() if mode is None else mode)
+        os.replace(temp, path)
+    except BaseException:
+        Path(temp).unlink(missing_ok=True)
+        raise

@@ -1,0 +1,325 @@
+"""The vehicle's altitude (the paper's Fig. 17) and the RAAN gaps closing (Fig. 18).
+
+All RAAN rates are recomputed from the catalog elements with the mission's J2
+(``solution.mission.j2``), the same model the solver used, so the plotted RAAN gaps
+close exactly at each arrival.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+
+from ..inputs.catalog import Catalog
+from ..physics.orbits import SECONDS_PER_DAY
+from ..physics.transfer import NodeOrbits, drift_rate
+from .plot_common import (
+    _DEBRIS_COLOR,
+    _LABEL_SIZE,
+    _LIMIT_COLOR,
+    _NOTE_SIZE,
+    _RAAN_SAMPLES,
+    _TITLE_SIZE,
+    _VEHICLE_COLOR,
+    _altitudes_km,
+    _break_wraps,
+    _end_day,
+    _leg_color,
+    _leg_name,
+    _new_figure,
+    _path_name,
+    _positions,
+    _wrap_deg,
+)
+
+if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
+    from ..solution import Solution
+
+
+def vehicle_altitude(solution: Solution, catalog: Catalog) -> tuple[np.ndarray, np.ndarray]:
+    """Altitude of the vehicle over the mission, as the corners of a step line.
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for.
+
+    Returns
+    -------
+    days, altitude_km : ndarray
+        Mission time [days after t0] and altitude [km]: the debris altitude while at a
+        debris, the drift altitude while drifting, vertical steps at the (instantaneous)
+        Hohmann transfers.
+    """
+    index = _positions(solution, catalog)
+    altitude = _altitudes_km(catalog)
+    first = solution.legs[0].from_id if solution.legs else solution.path[0]
+    days, alts = [0.0], [altitude[index[first]]]
+    for leg in solution.legs:
+        arrival = leg.departure_day + leg.duration_days
+        days += [leg.departure_day, leg.departure_day, arrival, arrival]
+        alts += [altitude[index[leg.from_id]], leg.drift_alt_km, leg.drift_alt_km]
+        alts += [altitude[index[leg.to_id]]]
+    end = _end_day(solution)
+    if end > days[-1]:
+        days.append(end)
+        alts.append(alts[-1])
+    return np.asarray(days), np.asarray(alts)
+
+
+def raan_gap_history(
+    solution: Solution, catalog: Catalog, samples: int = _RAAN_SAMPLES
+) -> list[tuple[np.ndarray, np.ndarray]]:
+    """RAAN of the vehicle minus RAAN of its next target during each leg (paper Fig. 18).
+
+    Vehicle RAAN = origin debris RAAN at departure + drift-orbit rate x elapsed time;
+    target RAAN = its RAAN at t0 + its rate x t (Eq. 7-9, rates with ``solution.mission.j2``).
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for.
+    samples : int
+        Points per leg, departure and arrival included.
+
+    Returns
+    -------
+    list of (days, gap_deg)
+        One pair per leg: mission time [days after t0] and the difference [deg] wrapped
+        into (-180, 180]; it is 0 at arrival.
+    """
+    index = _positions(solution, catalog)
+    j2 = solution.mission.j2
+    orbits = NodeOrbits.from_elements(
+        catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad, j2=j2
+    )
+    raan0 = np.degrees(orbits.raan)
+    rate = np.degrees(orbits.rate) * SECONDS_PER_DAY  # deg/day
+    history = []
+    for leg in solution.legs:
+        origin, target = index[leg.from_id], index[leg.to_id]
+        rate_drift = (
+            np.degrees(drift_rate(leg.drift_a_km * 1000.0, np.radians(leg.drift_inc_deg), j2=j2))
+            * SECONDS_PER_DAY
+        )
+        days = leg.departure_day + np.linspace(0.0, leg.duration_days, samples)
+        vehicle = raan0[origin] + rate[origin] * leg.departure_day
+        vehicle = vehicle + rate_drift * (days - leg.departure_day)
+        gap = _wrap_deg(vehicle - (raan0[target] + rate[target] * days))
+        history.append((days, gap))
+    return history
+
+
+# ---------------------------------------------------------------------- Fig. 17
+def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
+    """Altitude of the vehicle over the mission: the paper's Fig. 17 ("optimal path orbits").
+
+    A step line (gid ``"vehicle"``) at the debris altitude while the vehicle is at a
+    debris and at the drift altitude while it drifts, with vertical steps at the
+    Hohmann transfers; each drift orbit is over-drawn in its leg's colour (gid
+    ``"drift-k"``, k from 1) and annotated with the leg (``5→8``), its altitude and its
+    inclination.  The altitude of each selected debris is a dashed reference line
+    labelled at the right, and the duration limit T_max a dotted vertical line.
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for (debris altitudes).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        x: mission time [days]; y: altitude [km].
+    """
+    index = _positions(solution, catalog)
+    altitude = _altitudes_km(catalog)
+    fig, ax = _new_figure()
+    days, alts = vehicle_altitude(solution, catalog)
+
+    debris_alts = {debris: float(altitude[index[debris]]) for debris in solution.path}
+    every = np.concatenate([alts, list(debris_alts.values())])
+    low, high = float(np.min(every)), float(np.max(every))
+    span = max(high - low, 10.0)
+    ax.set_ylim(low - 0.2 * span, high + 0.08 * span)
+    end = max(_end_day(solution), solution.mission.tmax_days)
+    ax.set_xlim(-0.015 * end, end * 1.015)  # transfers at t = 0 and at the end stay visible
+
+    for alt in debris_alts.values():
+        ax.axhline(alt, color=_DEBRIS_COLOR, linestyle="--", linewidth=0.8, zorder=1)
+    _label_debris_lines(ax, debris_alts)
+
+    ax.plot(
+        days, alts, color=_VEHICLE_COLOR, linewidth=1.3, label="vehicle", gid="vehicle", zorder=3
+    )
+    last_label = None  # x [days] of the previous leg's label
+    for k, leg in enumerate(solution.legs):
+        start, stop = leg.departure_day, leg.departure_day + leg.duration_days
+        color = _leg_color(k)
+        # a leg too short to hold its label (e.g. 1e-9 d at a RAAN crossing) would put it
+        # on top of its neighbour's: such a label goes above the line instead of below
+        middle = 0.5 * (start + stop)
+        crowded = last_label is not None and abs(middle - last_label) < 0.08 * end
+        last_label = None if crowded else middle
+        ax.axvspan(start, stop, color=color, alpha=0.08, linewidth=0, zorder=0)
+        ax.plot(
+            [start, stop],
+            [leg.drift_alt_km] * 2,
+            color=color,
+            linewidth=3.5,
+            solid_capstyle="butt",
+            gid=f"drift-{k + 1}",
+            zorder=4,
+        )
+        ax.annotate(
+            f"{_leg_name(leg)}\n{leg.drift_alt_km:.0f} km, {leg.drift_inc_deg:.2f}\u00b0",
+            xy=(middle, leg.drift_alt_km),
+            xytext=(0, 5) if crowded else (0, -5),
+            textcoords="offset points",
+            ha="center",
+            va="bottom" if crowded else "top",
+            fontsize=_NOTE_SIZE,
+            color=color,
+            fontweight="bold",
+            bbox={"boxstyle": "square,pad=0.1", "facecolor": "white", "alpha": 0.6, "linewidth": 0},
+        )
+    tmax = solution.mission.tmax_days
+    ax.axvline(tmax, color=_LIMIT_COLOR, linestyle=":", linewidth=1.2, zorder=2)
+    ax.annotate(
+        f"T\u2098\u2090\u2093 = {tmax:g} d",
+        xy=(tmax, 1.0),
+        xycoords=ax.get_xaxis_transform(),
+        xytext=(-3, -3),
+        textcoords="offset points",
+        ha="right",
+        va="top",
+        fontsize=_NOTE_SIZE,
+        color=_LIMIT_COLOR,
+    )
+
+    proxies = [
+        Line2D([], [], color=_VEHICLE_COLOR, linewidth=1.3, label="vehicle"),
+        Line2D(
+            [], [], color=_leg_color(0), linewidth=3.5, label="drift orbit (one colour per leg)"
+        ),
+        Line2D([], [], color=_DEBRIS_COLOR, linestyle="--", linewidth=0.8, label="debris orbit"),
+    ]
+    ax.legend(
+        handles=proxies,
+        fontsize=_NOTE_SIZE,
+        loc="upper center",
+        ncols=3,
+        bbox_to_anchor=(0.5, -0.14),
+        frameon=False,
+    )
+    ax.set_xlabel("mission time [days]", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("altitude [km]", fontsize=_LABEL_SIZE)
+    ax.set_title(
+        f"Vehicle orbits along the path {_path_name(solution.path)} (paper Fig. 17)",
+        fontsize=_TITLE_SIZE,
+    )
+    ax.grid(True, axis="x", linewidth=0.4, alpha=0.5)
+    return fig
+
+
+def _node_name(node_id: str) -> str:
+    """How a path node is named on a figure: the injection orbit is not a debris."""
+    return "injection orbit" if node_id == "injection" else f"debris {node_id}"
+
+
+def _label_debris_lines(ax, debris_alts: dict[str, float]) -> None:
+    """Label the debris reference lines in the right margin, spread so labels never overlap."""
+    if not debris_alts:
+        return
+    bottom, top = ax.get_ylim()
+    order = sorted(debris_alts, key=debris_alts.get)
+    wanted = np.array([(debris_alts[d] - bottom) / (top - bottom) for d in order])
+    gap = 0.105  # axes fraction between label centres: two 9 pt lines on a ~3.2 in axes
+    placed = wanted.copy()
+    for k in range(1, len(placed)):
+        placed[k] = max(placed[k], placed[k - 1] + gap)
+    overflow = placed[-1] - 1.0
+    if overflow > 0:  # shift down what went past the top, keeping the gaps
+        placed -= overflow
+        for k in range(len(placed) - 2, -1, -1):
+            placed[k] = min(placed[k], placed[k + 1] - gap)
+    for debris, y_wanted, y_placed in zip(order, wanted, placed, strict=True):
+        ax.annotate(
+            f"{_node_name(debris)}\n{debris_alts[debris]:.0f} km",
+            xy=(1.0, y_wanted),
+            xycoords="axes fraction",
+            xytext=(1.015, y_placed),
+            textcoords="axes fraction",
+            va="center",
+            ha="left",
+            fontsize=_NOTE_SIZE,
+            color="#404040",
+            linespacing=0.95,
+            annotation_clip=False,
+            arrowprops={"arrowstyle": "-", "color": _DEBRIS_COLOR, "linewidth": 0.6}
+            if abs(y_placed - y_wanted) > 0.01
+            else None,
+        )
+
+
+# ---------------------------------------------------------------------- Fig. 18
+def plot_raan(solution: Solution, catalog: Catalog) -> Figure:
+    """RAAN correction during each leg: the paper's Fig. 18.
+
+    For leg k (line gid ``"raan-leg-k"``, k from 1, labelled ``5→8``): RAAN of the
+    vehicle minus RAAN of the leg's target [deg], wrapped into (-180, 180], from the
+    departure to the arrival.  Vehicle RAAN = origin debris' RAAN at departure +
+    drift-orbit J2 rate x elapsed time; target RAAN = its RAAN at t0 + its rate x t.
+    The gap reaches 0 at each arrival (round marker); the departure is a square.
+    Wrap-arounds are broken with NaN so no line crosses the plot.
+
+    Parameters
+    ----------
+    solution : Solution
+    catalog : Catalog
+        The catalog the solution was solved for (RAANs at t0, elements for the rates).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        x: mission time [days]; y: RAAN difference [deg].
+    """
+    fig, ax = _new_figure()
+    ax.axhline(0.0, color=_VEHICLE_COLOR, linewidth=0.8, zorder=1)
+    for k, (leg, (days, gap)) in enumerate(
+        zip(solution.legs, raan_gap_history(solution, catalog), strict=True)
+    ):
+        color = _leg_color(k)
+        broken = _break_wraps(gap)
+        if broken.size != gap.size:  # keep x and y aligned around the inserted NaN
+            jumps = np.flatnonzero(np.abs(np.diff(gap)) > 180.0)
+            days = np.insert(days, jumps + 1, np.nan)
+        label = f"{_leg_name(leg)}  (drift {leg.drift_alt_km:.0f} km, {leg.duration_days:.1f} d)"
+        ax.plot(
+            days, broken, color=color, linewidth=2.0, label=label, gid=f"raan-leg-{k + 1}", zorder=3
+        )
+        ax.plot(days[0], broken[0], marker="s", color=color, markersize=5, zorder=4)
+        ax.plot(
+            days[-1],
+            broken[-1],
+            marker="o",
+            color=color,
+            markersize=6,
+            zorder=4,
+            markeredgecolor="white",
+        )
+        ax.axvline(leg.departure_day, color=_DEBRIS_COLOR, linestyle=":", linewidth=0.7)
+    end = max(_end_day(solution), 1.0)
+    ax.set_xlim(-0.015 * end, end * 1.015)
+    ax.set_xlabel("mission time [days]", fontsize=_LABEL_SIZE)
+    ax.set_ylabel("\u03a9 vehicle \u2212 \u03a9 target [deg]", fontsize=_LABEL_SIZE)
+    ax.set_title("RAAN correction on the drift orbits (paper Fig. 18)", fontsize=_TITLE_SIZE)
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    if solution.legs:
+        ax.legend(fontsize=_NOTE_SIZE, title="leg", title_fontsize=_NOTE_SIZE, loc="best")
+    return fig
