@@ -59,7 +59,7 @@ from .results import CertifiedNodes, CertifiedPath, CertifiedResult, allowed_gap
 INITIAL_CELLS = 8
 DEFAULT_GAP_REL = 1e-3
 PATH_TOL_MPS = 0.01
-SEED_PATHS = 12
+SEED_PATHS = 4
 FIRST_ARCS = 1.5e6
 """About the most arcs of the first network (before a plan prunes edges): the initial
 cells per debris are fewer when the edges are many."""
