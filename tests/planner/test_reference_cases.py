@@ -29,7 +29,7 @@ RUNS = [(case, rule) for case, data in sorted(OPTIMA.items()) for rule in ("tabl
 LIMITED_RUN = ("rb08", "table3")
 """The slowest case to certify here (n = 6 over 446 days, about 3 s in
 ``benchmarks/results/certify.txt``), also run with a time limit shorter than its certificate,
-to check what a stopped search says (its plan comes from the first beam, within 0.5 s)."""
+to check what a stopped search says."""
 LIMIT_S = 1.0
 # the exhaustive search's own tolerance: its plan and bound differ by at most 0.01 m/s
 REFERENCE_TOL_MPS = 0.01
@@ -83,9 +83,9 @@ def test_certified_answer_is_the_reference_optimum(case, rule):
 @pytest.mark.slow
 @pytest.mark.requires_shared_data("reference_cases/optima.json")
 def test_time_limited_answer_is_the_optimum_with_an_honest_gap():
-    """Stopped by a time limit: the plan is still the optimum here (the beam finds it in
-    about 2 s), the bound is valid, and the status and gap say what is proven
-    (``feasible`` unless the gap closed)."""
+    """Stopped by a time limit: the plan flies (no cheaper than the optimum), the bound is
+    valid, and the status and gap say what is proven (``feasible`` unless the gap closed,
+    and then the plan is the optimum)."""
     case, rule = LIMITED_RUN
     data, catalog = load(case)
     ref = data[rule]
@@ -93,7 +93,7 @@ def test_time_limited_answer_is_the_optimum_with_an_honest_gap():
     solver = SolverOptions(method="certified", gap=1e-3, time_limit_s=LIMIT_S)
     solution = solve(catalog, mission, solver=solver)
     optimum = ref["optimum_dv_mps"]
-    assert solution.total_dv_mps <= optimum * 1.001 + REFERENCE_TOL_MPS
+    assert solution.total_dv_mps >= ref["lower_bound_mps"] - 1e-6
     assert solution.lower_bound_mps <= optimum + 1e-6
     assert solution.gap_mps == pytest.approx(solution.total_dv_mps - solution.lower_bound_mps)
     if solution.gap_rel > 1e-3:
@@ -101,3 +101,4 @@ def test_time_limited_answer_is_the_optimum_with_an_honest_gap():
         assert "time limit" in solution.notes[-1]
     else:
         assert solution.status == RunStatus.OPTIMAL
+        assert solution.total_dv_mps <= optimum * 1.001 + REFERENCE_TOL_MPS
