@@ -274,11 +274,13 @@ def test_errors_import_nothing_of_ours():
 @pytest.mark.parametrize(
     "module", ["sdc_cvx.inputs.formats", "sdc_cvx.physics.plan", "sdc_cvx.study.runner"]
 )
+@pytest.mark.slow
 def test_a_module_imports_alone(module):
     """No import cycle: each of these works as the first import of a fresh interpreter."""
     subprocess.run([sys.executable, "-c", f"import {module}"], check=True)
 
 
+@pytest.mark.slow
 def test_import_sdc_cvx_is_light():
     """``import sdc_cvx`` (and the CLI module, for ``--help``) load neither CVXPY nor
     matplotlib nor pandas; the public names still resolve when used."""

@@ -160,6 +160,7 @@ def skip_if_unlicensed(report):
         pytest.skip(f"{report.backend} cannot run here: {report.message[:120]}")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("backend", list(BACKENDS))
 @pytest.mark.parametrize("instance", INSTANCES, ids=lambda i: i.name)
 def test_backend_matches_enumeration(backend, instance):

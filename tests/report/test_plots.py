@@ -52,6 +52,7 @@ def _check_svg(data: bytes) -> None:
     assert root.tag.endswith("svg")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", FIGURE_NAMES)
 def test_each_figure_renders_to_valid_png_and_svg(figures, name):
     fig = figures[name]
@@ -226,6 +227,7 @@ def test_iterations_skip_missing_values_and_mark_path_changes(solution):
     assert any("5\u21928\u21922\u219210\u21926" in note for note in notes)
 
 
+@pytest.mark.slow
 def test_save_figures_writes_png_and_svg_atomically(solution, catalog, tmp_path):
     folder = tmp_path / "figs"
     paths = save_figures(solution, catalog, folder, formats=("png", "svg"), dpi=60)

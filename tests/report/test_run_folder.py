@@ -350,6 +350,7 @@ def test_a_second_run_into_a_busy_folder_is_refused_and_a_kill_is_cleaned_at_the
     assert third.wait(timeout=120) == 0 and whole(out) and not live.exists()
 
 
+@pytest.mark.slow
 def test_an_earlier_run_folder_holding_a_file_of_the_user_is_refused(solution, tmp_path):
     from sdc_cvx.report.plots import FIGURE_NAMES, SUPPORTED_FORMATS
     from sdc_cvx.report.run_folder import RUN_FOLDER_FILES

@@ -84,6 +84,7 @@ def test_every_leg_satisfies_the_physics_paper_case(paper_solution):
     check_legs_against_physics(paper_solution, Catalog.paper_case(), Mission())
 
 
+@pytest.mark.slow
 def test_every_leg_satisfies_the_physics_with_dates_that_matter():
     """Synthetic SSO debris whose J2 rates differ: departure dates change durations."""
     catalog = sso_catalog(14, seed=3, raan_span_deg=40.0)
@@ -125,6 +126,7 @@ def test_time_limit_without_incumbent_is_not_a_solution(monkeypatch):
         solve(catalog, Mission(n=4, tmax_days=300.0), settings=SequentialSettings(seed_paths=0))
 
 
+@pytest.mark.slow
 def test_time_limit_without_incumbent_returns_the_plan_held_and_says_so(monkeypatch):
     """With a plan held before the first MILP (seed paths), a MILP stopped empty-handed
     ends the run on that plan, with its own status, instead of losing it."""
@@ -158,6 +160,7 @@ def test_solution_json_has_the_documented_keys(paper_solution):
     assert data["mission"]["n"] == 5 and data["mission"]["tmax_days"] == 365.25
 
 
+@pytest.mark.slow
 def test_minimum_transfer_duration_holds_in_the_returned_plan(paper_solution):
     """T_min = 75 days: the unconstrained optimum's last leg (70 days) must lengthen."""
     assert min(leg.duration_days for leg in paper_solution.legs) < 75.0
@@ -178,6 +181,7 @@ def test_two_half_segment_duration_model_reaches_the_same_plan(paper_solution):
     check_legs_against_physics(sol, Catalog.paper_case(), Mission())
 
 
+@pytest.mark.slow
 def test_a_failing_first_backend_falls_back_and_says_so(paper_solution, crash_backend):
     """Issue 6: the first backend of the chain crashes; the run finishes on the next one."""
     from sdc_cvx import SolverOptions
@@ -209,6 +213,7 @@ def test_the_paper_method_flies_its_path_on_the_paths_best_schedule():
     assert any("optimised globally" in note for note in sol.notes)
 
 
+@pytest.mark.slow
 def test_steps_that_change_nothing_end_the_run_as_stalled():
     """A catalog where the paper's driver used to repeat one solution to its 40-iteration
     limit (issue 13): the run ends after ``max_repeats`` repeats and says why.
@@ -258,6 +263,7 @@ def test_the_held_plan_sits_in_the_copies_whose_windows_hold_its_dates():
     assert driver.copies_holding(legs, [-50.0, -50.0]) == legs  # no window holds: its own
 
 
+@pytest.mark.slow
 def test_with_its_warm_start_admitted_the_run_no_longer_stalls_here():
     """sso4-n4-365d: the held plan flew outside its copies' windows, the MILP restricted
     to them was infeasible, and the run repeated one solution until it stalled; held in
