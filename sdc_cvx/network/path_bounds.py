@@ -327,7 +327,7 @@ def cheapest_path(arcs: NetworkArcs, legs: int, node_debris, upper: float, walks
     cheapest, so two partial paths are compared only when every completion does the
     same to both.  A label whose cost plus the walk bound of its completion exceeds
     ``upper`` is dropped.  This is the time-expanded relaxation of the certified search
-    with its no-good rows (:func:`~sdc_cvx.planner.relaxation.solve_relaxation`) solved
+    with its no-good rows (:func:`~sdc_cvx.planner.certified.relaxation.solve_relaxation`) solved
     exactly without a MILP.
 
     Parameters
