@@ -16,7 +16,8 @@ cannot hold the rest.
 ``--large`` runs the n = 7-10 goals instead: the reference cases lg7, lg8, lg8b beside
 the exhaustive search's recorded time (``oracle s``), catalogs drawn as they were but
 harder (N 14-16, RAANs over 60 degrees, T_max up to 730 days, the free inclination
-rule), GTOC9 with n = 8, and GTOC9 with n = 10 over 730 days.
+rule), the 81 SSO rocket bodies with n = 7 and 8, GTOC9 with n = 8, and GTOC9 with
+n = 10 over 730 days.
 
 The machine it ran on is printed first: compare times within one run.
 """
@@ -73,6 +74,10 @@ def large_cases():
     for seed, count, n, span, tmax, rule in RANDOM_LARGE:
         out.append((f"r{seed}-N{count}-n{n}-{tmax:g}d-{rule}", ("random", (seed, count, span)),
                     dict(n=n, tmax_days=tmax, drift_inclination=rule), None))  # fmt: skip
+    rb = SHARED / "sso_rocket_bodies_2020" / "sso_rb.tle"
+    if rb.is_file():  # the 81 SSO rocket bodies, as `run` selects them
+        for n in (7, 8):
+            out.append((f"sso-rb-n{n}", ("tle", str(rb)), dict(n=n, tmax_days=365.25), None))
     gtoc9 = SHARED / "gtoc9" / "debris_data.txt"
     if gtoc9.is_file():
         out.append(("gtoc9-n8", ("gtoc9", str(gtoc9)), dict(n=8, tmax_days=365.25), None))
