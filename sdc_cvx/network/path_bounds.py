@@ -191,8 +191,8 @@ def elementary_bounds(arcs: NetworkArcs, legs: int, node_debris, upper: float,
     if not np.isfinite(upper):  # nothing to prune against: every partial path is a label
         return gave_up
     first, n = arcs.first, arcs.n_nodes
-    leaving_start, leaving_cell = _grouped(arcs.tail, first, n), _grouped(arcs.tail, ~first, n)
-    entering_cell = _grouped(arcs.head, ~first, n)
+    leaving_start, leaving_cell = grouped(arcs.tail, first, n), grouped(arcs.tail, ~first, n)
+    entering_cell = grouped(arcs.head, ~first, n)
     starts = np.flatnonzero(np.isfinite(forward_walk[0]))
     forward = [_Labels(starts, node_debris[starts][:, None], np.zeros(len(starts)))]
     for k in range(legs):
@@ -220,29 +220,38 @@ def elementary_bounds(arcs: NetworkArcs, legs: int, node_debris, upper: float,
     return through, cheapest
 
 
-def _grouped(source, usable, n_nodes: int):
+def grouped(source, usable, n_nodes: int):
     """The usable arcs sorted by their ``source`` node, and where each node's run starts."""
     rows = np.flatnonzero(usable)
     rows = rows[np.argsort(source[rows], kind="stable")]
     return rows, np.searchsorted(source[rows], np.arange(n_nodes + 1))
 
 
-def _extend(labels: _Labels, grouped, target, new_debris, cost, rest, upper,
+def leaving(groups, nodes, *, limit: float = np.inf):
+    """Every pair (position in ``nodes``, arc leaving that node), the arcs of each node
+    from ``groups`` (:func:`grouped`); None when they are more than ``limit``."""
+    rows, starts = groups
+    degree = (starts[1:] - starts[:-1])[nodes]
+    if int(degree.sum()) > limit:
+        return None
+    which = np.repeat(np.arange(len(nodes)), degree)
+    offset = np.arange(len(which)) - np.repeat(np.cumsum(degree) - degree, degree)
+    return which, rows[starts[nodes[which]] + offset]
+
+
+def _extend(labels: _Labels, groups, target, new_debris, cost, rest, upper,
             max_labels, trie=None) -> _Labels | None:  # fmt: skip
-    """Labels one arc longer: along the arcs leaving each label's node (``grouped``, from
-    :func:`_grouped`) for a debris not visited yet, kept while ``cost + rest[node] <=
+    """Labels one arc longer: along the arcs leaving each label's node (``groups``, from
+    :func:`grouped`) for a debris not visited yet, kept while ``cost + rest[node] <=
     upper``, one per (node, visited debris), the cheapest.
 
     With ``trie`` (:func:`_trie`'s transition table), one per (node, visited debris,
     trie state), each label keeping its parent and arc.
     """
-    rows, starts = grouped
-    degree = (starts[1:] - starts[:-1])[labels.node]
-    if int(degree.sum()) > max_labels * 8:
+    pairs = leaving(groups, labels.node, limit=max_labels * 8)
+    if pairs is None:
         return None
-    which = np.repeat(np.arange(len(labels)), degree)
-    offset = np.arange(len(which)) - np.repeat(np.cumsum(degree) - degree, degree)
-    arc = rows[starts[labels.node[which]] + offset]
+    which, arc = pairs
     debris = new_debris[arc]
     total = labels.cost[which] + cost[arc]
     node = target[arc]
@@ -358,7 +367,7 @@ def cheapest_path(arcs: NetworkArcs, legs: int, node_debris, upper: float, walks
     n_debris = int(max(np.max(node_debris, initial=-1), np.max(arcs.debris_to, initial=-1))) + 1
     trie, leaf = _trie(excluded, n_debris)
     first, n = arcs.first, arcs.n_nodes
-    leaving_start, leaving_cell = _grouped(arcs.tail, first, n), _grouped(arcs.tail, ~first, n)
+    leaving_start, leaving_cell = grouped(arcs.tail, first, n), grouped(arcs.tail, ~first, n)
     starts = np.flatnonzero(np.isfinite(forward_walk[0]))
     labels = [_Labels(starts, node_debris[starts][:, None], np.zeros(len(starts)),
                       trie[_ROOT, node_debris[starts]], np.full(len(starts), -1),

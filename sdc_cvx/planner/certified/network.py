@@ -21,7 +21,14 @@ import time
 
 import numpy as np
 
-from ...network.path_bounds import NetworkArcs, cheapest_path, elementary_bounds, walk_bounds
+from ...network.path_bounds import (
+    NetworkArcs,
+    cheapest_path,
+    elementary_bounds,
+    grouped,
+    leaving,
+    walk_bounds,
+)
 from ...physics.leg_bounds import LegCosts, leg_box_bound
 from .relaxation import Arcs
 from .results import CertifiedNodes
@@ -174,16 +181,12 @@ def beam_paths(
     """
     L = nodes.legs
     n_nodes = int(max(np.max(arcs.tail, initial=-1), np.max(arcs.head, initial=-1))) + 1
-    order = np.argsort(arcs.tail, kind="stable")
-    first_of = np.searchsorted(arcs.tail[order], np.arange(max(n_nodes, n_debris) + 1))
+    groups = grouped(arcs.tail, np.ones(len(arcs), dtype=bool), max(n_nodes, n_debris))
     node = np.flatnonzero(start_allowed)  # the start nodes are the debris' positions
     cost = np.zeros(len(node))
     paths, rows = node[:, None], np.empty((len(node), 0), dtype=int)
     for k in range(L):
-        degree = first_of[node + 1] - first_of[node]
-        which = np.repeat(np.arange(len(node)), degree)
-        offset = np.arange(len(which)) - np.repeat(np.cumsum(degree) - degree, degree)
-        arc = order[first_of[node[which]] + offset]
+        which, arc = leaving(groups, node)
         fresh = ~(paths[which] == arcs.debris_to[arc][:, None]).any(axis=1)
         which, arc = which[fresh], arc[fresh]
         grown = cost[which] + arcs.cost[arc]
