@@ -6,6 +6,7 @@ lazy import counts too; ``if TYPE_CHECKING:`` blocks are skipped: they never run
 """
 
 import ast
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -65,7 +66,6 @@ CVXPY_LAYERS = {"milp", "planner", "campaign"}
 
 MAX_LINES = 500
 """The longest a module of sdc_cvx may be (README "Layout")."""
-
 
 
 def layer_of(module: str) -> str:
@@ -288,10 +288,35 @@ def test_import_sdc_cvx_is_light():
         "import sys, sdc_cvx, sdc_cvx.cli\n"
         "heavy = [m for m in ('cvxpy', 'matplotlib', 'pandas') if m in sys.modules]\n"
         "assert not heavy, heavy\n"
-        "from sdc_cvx import Catalog, solve, sweep, CatalogError\n"
-        "assert callable(solve) and callable(sweep) and 'cvxpy' in sys.modules\n"
+        "from sdc_cvx import Catalog, solve, sweep, CatalogError, SequentialSettings\n"
+        "assert callable(solve) and callable(sweep) and SequentialSettings().max_iterations\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@pytest.mark.slow
+def test_the_default_run_needs_no_cvxpy_when_labels_solve_the_relaxations(tmp_path):
+    """``python -m sdc_cvx run`` on the paper case (README's first command): the certified
+    search solves every relaxation by labels, so neither the run nor the check of its
+    backend imports CVXPY (1-2 s of import, issue 21's end-to-end goal); the paper's
+    method, a MILP every iteration, does."""
+    probe = (
+        "import atexit, runpy, sys\n"
+        "atexit.register(lambda: print('cvxpy' in sys.modules, file=sys.stderr))\n"
+        "sys.argv = ['sdc_cvx', *sys.argv[1:]]\n"
+        "runpy.run_module('sdc_cvx', run_name='__main__')\n"
+    )
+    loaded = {}
+    for method in ("certified", "paper"):
+        done = subprocess.run(
+            [sys.executable, "-c", probe, "run", "--method", method, "--json", "--quiet",
+             "--out", str(tmp_path / method)],
+            capture_output=True, text=True, timeout=300,
+        )  # fmt: skip
+        assert done.returncode == 0, done.stderr
+        assert json.loads(done.stdout)["status"] == "optimal" or method == "paper"
+        loaded[method] = done.stderr.strip().splitlines()[-1]
+    assert loaded == {"certified": "False", "paper": "True"}
 
 
 def test_old_import_paths_still_work():

@@ -29,7 +29,7 @@ from .readers import (
     read_scipy,
     read_xpress,
 )
-from .types import DEFAULT_BACKEND, MILP_BACKENDS, SolverOptions, package_version
+from .types import BACKEND_MODULES, DEFAULT_BACKEND, MILP_BACKENDS, SolverOptions, package_version
 
 
 @dataclass(frozen=True)
@@ -42,8 +42,6 @@ class Backend:
         CVXPY's solver name.
     package : str
         Python distribution that provides it (``pip install``).
-    module : str
-        Importable module of that distribution.
     options : dict
         Our option -> the backend's name for it (``SolverOptions`` field names as
         keys); an option absent here is not supported and is not passed on.
@@ -70,7 +68,6 @@ class Backend:
 
     name: str
     package: str
-    module: str
     options: dict
     read: Callable[[object, RawContext], Native]
     stats: str
@@ -80,6 +77,11 @@ class Backend:
     reports_time: bool = True
     commercial: bool = False
     converters: dict = field(default_factory=dict)
+
+    @property
+    def module(self) -> str:
+        """Importable module of the distribution (:data:`~sdc_cvx.milp.types.BACKEND_MODULES`)."""
+        return BACKEND_MODULES[self.name]
 
     def kwargs(self, options: SolverOptions) -> tuple[dict, tuple[str, ...]]:
         """``Problem.solve`` keywords for ``options`` and the options the backend lacks."""
@@ -119,7 +121,7 @@ BACKENDS: dict[str, Backend] = {
     b.name: b
     for b in (
         Backend(
-            "HIGHS", "highspy", "highspy",
+            "HIGHS", "highspy",
             {"time_limit_s": "time_limit", "mip_gap": "mip_rel_gap", "threads": "threads",
              "seed": "random_seed", "presolve": "presolve"},
             read_highs,
@@ -130,7 +132,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED,
         ),
         Backend(
-            "SCIP", "PySCIPOpt", "pyscipopt",
+            "SCIP", "PySCIPOpt",
             {"time_limit_s": "limits/time", "mip_gap": "limits/gap",
              "seed": "randomization/randomseedshift"},
             read_scip, nest="scip_params",
@@ -141,7 +143,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED,
         ),
         Backend(
-            "CBC", "cylp", "cylp",
+            "CBC", "cylp",
             {"time_limit_s": "maximumSeconds", "mip_gap": "allowableFractionGap",
              "threads": "numberThreads"},
             read_cbc, reports_time=False,
@@ -151,7 +153,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED + " (numberThreads accepted; its effect not measured)",
         ),
         Backend(
-            "GLPK_MI", "cvxopt", "cvxopt",
+            "GLPK_MI", "cvxopt",
             {"time_limit_s": "tm_lim", "mip_gap": "mip_gap"},
             read_glpk, reports_time=False,
             converters={"time_limit_s": _milliseconds},
@@ -161,7 +163,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED,
         ),
         Backend(
-            "SCIPY", "scipy", "scipy",
+            "SCIPY", "scipy",
             {"time_limit_s": "time_limit", "mip_gap": "mip_rel_gap", "verbose": "disp"},
             read_scipy, nest="scipy_options", reports_time=False,
             stats="raw: scipy.optimize.OptimizeResult (status, message, x, fun, "
@@ -170,7 +172,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED,
         ),
         Backend(
-            "GUROBI", "gurobipy", "gurobipy",
+            "GUROBI", "gurobipy",
             {"time_limit_s": "TimeLimit", "mip_gap": "MIPGap", "threads": "Threads",
              "seed": "Seed"},
             read_gurobi, commercial=True,
@@ -179,7 +181,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED_FREE,
         ),
         Backend(
-            "CPLEX", "cplex", "cplex",
+            "CPLEX", "cplex",
             {"time_limit_s": "timelimit", "mip_gap": "mip.tolerances.mipgap",
              "threads": "threads", "seed": "randomseed"},
             read_cplex, nest="cplex_params", commercial=True,
@@ -189,7 +191,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED_FREE,
         ),
         Backend(
-            "XPRESS", "xpress", "xpress",
+            "XPRESS", "xpress",
             {"time_limit_s": "timelimit", "mip_gap": "miprelstop", "threads": "threads",
              "seed": "randomseed"},
             read_xpress, commercial=True,
@@ -199,7 +201,7 @@ BACKENDS: dict[str, Backend] = {
             verified=_VERIFIED_FREE,
         ),
         Backend(
-            "MOSEK", "mosek", "mosek",
+            "MOSEK", "mosek",
             {"time_limit_s": "MSK_DPAR_OPTIMIZER_MAX_TIME",
              "mip_gap": "MSK_DPAR_MIO_TOL_REL_GAP", "threads": "MSK_IPAR_NUM_THREADS",
              "seed": "MSK_IPAR_MIO_SEED"},
@@ -211,7 +213,7 @@ BACKENDS: dict[str, Backend] = {
             "solving and the status reading not verified: needs a license",
         ),
         Backend(
-            "COPT", "coptpy", "coptpy",
+            "COPT", "coptpy",
             {"time_limit_s": "TimeLimit", "mip_gap": "RelGap", "threads": "Threads"},
             read_copt, commercial=True,
             stats="raw: dict with model (coptpy Model: status, hasmipsol, bestbnd, bestgap, "

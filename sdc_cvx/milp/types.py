@@ -14,8 +14,11 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 DEFAULT_BACKEND = "HIGHS"
-MILP_BACKENDS = ("HIGHS", "SCIP", "CBC", "GLPK_MI", "SCIPY", "GUROBI", "CPLEX", "XPRESS", "MOSEK",
-                 "COPT")  # fmt: skip
+BACKEND_MODULES = {"HIGHS": "highspy", "SCIP": "pyscipopt", "CBC": "cylp", "GLPK_MI": "cvxopt",
+                   "SCIPY": "scipy", "GUROBI": "gurobipy", "CPLEX": "cplex", "XPRESS": "xpress",
+                   "MOSEK": "mosek", "COPT": "coptpy"}  # fmt: skip
+"""Each MILP backend CVXPY can call and the Python module CVXPY imports to call it."""
+MILP_BACKENDS = tuple(BACKEND_MODULES)
 """The MILP backends CVXPY can call, the default first: the keys of
 :data:`~sdc_cvx.milp.backends.BACKENDS`."""
 METHODS = ("certified", "paper")
@@ -161,3 +164,18 @@ def package_version(module: str, package: str | None = None) -> str | None:
         return importlib.metadata.version(package or module)
     except (ImportError, ValueError, importlib.metadata.PackageNotFoundError):
         return None
+
+
+def backend_importable(name: str) -> bool:
+    """Whether the module CVXPY calls backend ``name`` through can be found here.
+
+    Asked without importing it or CVXPY (a millisecond, where importing CVXPY to ask
+    :func:`~sdc_cvx.milp.backends.installed_backends` takes 1-2 s).  CVXPY may still
+    refuse a module it finds too old; a solve then reports the backend not installed
+    and moves on along the fallback chain.
+    """
+    module = BACKEND_MODULES.get(name)
+    try:
+        return module is not None and importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):
+        return False

@@ -21,6 +21,7 @@ import dataclasses
 import time
 import warnings
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,11 +31,12 @@ from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
 from ..network.edges import drift_radius_bounds, node_orbits
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunStatus, Solution
-from . import paper
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import PathSchedule, schedule_plan
 from .nodes import MissionNodes, make_legs
-from .paper import SequentialSettings
+
+if TYPE_CHECKING:  # the paper's room (and CVXPY) is imported only when its method runs
+    from .paper import SequentialSettings
 
 
 def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
@@ -84,6 +86,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     for message in ignored:
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     if solver.method == "paper":
+        from . import paper
+
         solution = paper.solve(catalog, mission, solver=solver, settings=settings,
                                progress=progress)  # fmt: skip
         return dataclasses.replace(solution, notes=(*solution.notes, *ignored))

@@ -15,7 +15,13 @@ from sdc_cvx.milp.backends import (
     installed_backends,
 )
 from sdc_cvx.milp.solve import check_result, solve_milp
-from sdc_cvx.milp.types import DEFAULT_BACKEND, MILP_BACKENDS, SolverOptions, Status
+from sdc_cvx.milp.types import (
+    DEFAULT_BACKEND,
+    MILP_BACKENDS,
+    SolverOptions,
+    Status,
+    backend_importable,
+)
 
 INSTALLED = installed_backends()
 EASY_OPTIMUM = 2034.0  # of easy_knapsack(), found by every backend without limits
@@ -261,6 +267,16 @@ def test_registry_lists_every_milp_backend_cvxpy_knows():
                                   "XPRESS", "MOSEK", "COPT"}  # fmt: skip
     assert set(MILP_BACKENDS) <= set(cp.settings.SOLVERS)
     assert tuple(BACKENDS) == MILP_BACKENDS  # the table holds every name, in that order
+
+
+def test_a_backend_cvxpy_can_call_is_one_whose_module_is_found_without_cvxpy():
+    """The CLI checks the chosen backend by its module alone (CVXPY not imported): every
+    backend CVXPY lists as installed here must pass that check, and a name that is no
+    backend must not."""
+    installed = set(cp.installed_solvers()) & set(MILP_BACKENDS)
+    assert installed, "no MILP backend installed"
+    assert {name for name in installed if backend_importable(name)} == installed
+    assert not backend_importable("NOT_A_BACKEND")
 
 
 def test_available_backends():

@@ -35,11 +35,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-import cvxpy as cp
 import numpy as np
 import scipy.sparse as sp
 
-from ...milp.solve import chain_of, solve_with_fallback
 from ...milp.types import SolveReport, SolverOptions
 
 
@@ -130,6 +128,10 @@ def solve_relaxation(arcs: Arcs, *, n_nodes: int, n_debris: int, legs: int,
     -------
     RelaxationResult
     """
+    import cvxpy as cp  # here: a run whose relaxations the labels solve never loads CVXPY
+
+    from ...milp.solve import chain_of, solve_with_fallback
+
     m = len(arcs)
     x = cp.Variable(m, boolean=True)
     allowed = cp.Parameter(m, nonneg=True, value=np.ones(m))  # 0: arc barred (warm start)
