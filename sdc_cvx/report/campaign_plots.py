@@ -10,7 +10,6 @@ each mission's legs count from its own launch day.
 
 from __future__ import annotations
 
-from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +17,7 @@ from matplotlib import colormaps
 from matplotlib.figure import Figure
 
 from ..physics.orbits import SECONDS_PER_DAY, raan_rate
-from .atomic import write_atomic
+from .atomic import write_figure
 
 FIGURE_SIZE = (9.0, 4.8)
 _CANDIDATE_COLOR = "#c7c7c7"
@@ -195,6 +194,6 @@ def save_campaign_figures(solution, folder, formats=("png",), dpi: int = 150) ->
     for name, fig in campaign_figures(solution).items():
         for fmt in formats:
             target = Path(folder) / f"{name}.{fmt}"
-            write_atomic(target, partial(fig.savefig, format=fmt, dpi=dpi))
+            write_figure(fig, target, fmt, dpi)
             written.append(target)
     return written

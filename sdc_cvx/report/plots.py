@@ -24,14 +24,13 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from matplotlib.figure import Figure
 
 from ..inputs.catalog import Catalog
-from .atomic import write_atomic
+from .atomic import write_figure
 from .cost_plot import plot_cost
 from .iterations_plot import plot_iterations
 from .orbit_plots import plot_orbits, plot_raan, raan_gap_history, vehicle_altitude
@@ -136,7 +135,6 @@ def save_figures(
         fig = builders[name]()
         for fmt in formats:
             target = folder / f"{name}.{fmt}"
-            save = partial(fig.savefig, format=fmt, dpi=dpi)
-            write_atomic(target, save)  # 0644 under a 022 umask: meant to be shared
+            write_figure(fig, target, fmt, dpi)  # 0644 under a 022 umask: meant to be shared
             written.append(target)
     return written
