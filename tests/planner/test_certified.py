@@ -70,12 +70,11 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
 
     import pytest
 
-    from sdc_cvx.planner.certified.network import OutOfTime
-    from sdc_cvx.planner.certified.search import _Search
+    from sdc_cvx.planner.certified.network import OutOfTime, cost_table_clock
 
     lines = []
     clock = type("Clock", (), {"deadline": time.perf_counter() + 1e3, "say": lines.append})()
-    on_chunk = _Search._setup_clock(clock, every_s=0.0)
+    on_chunk = cost_table_clock(clock, every_s=0.0)
     on_chunk(1, 10**12)  # at this pace the tables need far more than the 1000 s left
     on_chunk(2, 10**12)
     assert sum("the edge cost tables alone need about" in line for line in lines) == 1

@@ -43,6 +43,42 @@ class OutOfTime(Exception):
     """The time limit ran out during the setup, before any plan."""
 
 
+SETUP_PROGRESS_S = 5.0
+"""Seconds between two progress lines of the edge cost tables."""
+
+
+def cost_table_clock(search, every_s: float | None = None):
+    """``LegCosts.build``'s chunk callback: the fraction done every ``every_s`` [s], a
+    word up front when the tables alone will outlast the time limit, and the limit
+    itself (:class:`OutOfTime`).  ``search`` has the ``deadline`` (read at each chunk)
+    and ``say``."""
+    every_s = SETUP_PROGRESS_S if every_s is None else every_s
+    started = last = time.perf_counter()
+    warned = False
+
+    def on_chunk(done: int, total: int) -> None:
+        nonlocal last, warned
+        now = time.perf_counter()
+        if now >= search.deadline and done < total:
+            raise OutOfTime(f"time limit reached while building the edge cost tables "
+                            f"({done} of {total} edges in {now - started:.0f} s)")  # fmt: skip
+        need = (now - started) * total / max(done, 1)
+        if not warned and done < total and started + need > search.deadline:
+            warned = True
+            search.say(f"  the edge cost tables alone need about {need:.0f} s, beyond the "
+                       f"time limit ({search.deadline - started:.0f} s left): the search will "
+                       "stop without a plan; raise the time limit")  # fmt: skip
+        if done >= total:  # the heartbeat's phase moves on with this line
+            search.say(f"  cost tables done ({total} edges, {now - started:.0f} s); next: the "
+                       "first network of date cells, its path bounds, cheap paths")  # fmt: skip
+        elif now - last >= every_s:
+            last, spent = now, now - started
+            search.say(f"  cost tables: {done / total:.0%} done ({done} of {total} edges, "
+                       f"{spent:.0f} s, about {need - spent:.0f} s left)")  # fmt: skip
+
+    return on_chunk
+
+
 class DateCells:
     """Date cells of every debris, each a sorted list of [lo, hi] with a version counter."""
 
