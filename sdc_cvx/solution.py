@@ -305,6 +305,8 @@ class Solution:
         count = len(self.iterations)
         if self.method == "certified":
             solves = self.model_size.get("milp_solves", count)
+            if solves == 0:
+                return "certified search, every relaxation solved by labels (no MILP)"
             return (
                 f"certified search, {solves} relaxation MILP{'' if solves == 1 else 's'} "
                 f"({self.backend})"

@@ -33,6 +33,9 @@ def test_run_paper_case_writes_the_run_folder(tmp_path):
     # certified by default: a proven bound within 0.1 % of the plan, below Table 8's 500.7
     assert data["method"] == "certified" and data["certified"] and data["status"] == "optimal"
     assert data["total_dv_mps"] - data["lower_bound_mps"] <= 1e-3 * data["total_dv_mps"]
+    # the status says how the relaxations were solved: here by labels, no MILP at all
+    assert data["model_size"]["milp_solves"] == 0
+    assert "status    optimal: certified search, every relaxation solved by labels" in result.output
     assert data["start"] is None  # Table 5 has no epochs
     legs = pd.read_csv(tmp_path / "out" / "legs.csv")
     assert len(legs) == 4 and abs(legs["dv_mps"].sum() - data["total_dv_mps"]) < 1e-6
