@@ -109,3 +109,17 @@ def test_the_milp_relaxation_still_certifies_where_labels_give_up(monkeypatch):
     assert solution.certified and solution.backend != "labels"
     assert solution.total_dv_mps <= optimum * 1.001 + 0.01
     assert solution.lower_bound_mps <= optimum + 1e-6
+
+
+def test_the_beam_paths_are_certified_best_quick_plan_first():
+    """The paper case's four first beam paths, in the beam's order (by their bounds),
+    have the optimum last (530.79, 528.18, 543.90, 499.99 m/s by their certificates):
+    ranked by a quick schedule each, the optimum is certified first, so it is the only
+    plan the beam announces and the three others stop at its cutoff."""
+    from sdc_cvx import Catalog, Mission, solve
+
+    lines = []
+    solution = solve(Catalog.paper_case(), Mission(), log=lines.append)
+    beam_plans = [line for line in lines if line.endswith("(beam)")]
+    assert len(beam_plans) == 1 and "5-8-2-6-10: 499.99 m/s" in beam_plans[0], lines
+    assert solution.status == "optimal" and round(solution.total_dv_mps, 2) == 499.99

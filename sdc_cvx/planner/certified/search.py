@@ -166,12 +166,14 @@ class _Search:
 
     def try_paths(self, paths, why: str) -> None:
         """Certify ``paths``, cheapest quick schedule (one round of :func:`solve_path`,
-        a plan that flies) first: the best plan is held first and the others'
-        certificates stop as soon as their bounds pass it (paper case: 0.98 s -> 0.64 s)."""
+        a plan that flies; a known schedule's plan) first: the best plan is held first and
+        the others' certificates stop as soon as their bounds pass it (the paper case's
+        schedules: 0.98 s -> 0.64 s)."""
         paths = [tuple(int(k) for k in path) for path in paths]
         if len(paths) > 1:
             fresh = [path for path in paths if path not in self.settled]
-            quick = {path: solve_path(self.path_problem(path), max_rounds=1).upper_mps
+            quick = {path: (self.known.get(path) or solve_path(self.path_problem(path),
+                                                               max_rounds=1)).upper_mps
                      + self.node_cost(path) for path in fresh}  # fmt: skip
             paths.sort(key=lambda path: quick.get(path, np.inf))
         for path in paths:
