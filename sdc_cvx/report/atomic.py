@@ -57,6 +57,7 @@ faster and 13 % larger."""
 
 
 def write_figure(figure, path: Path, fmt: str, dpi: int) -> None:
-    """A matplotlib ``figure`` saved as ``path`` in format ``fmt`` at ``dpi``, atomically."""
+    """A matplotlib ``figure`` saved as ``path`` in format ``fmt`` (png, svg, pdf) at
+    ``dpi`` [dots per inch], atomically (:func:`write_atomic`)."""
     options = {"pil_kwargs": {"compress_level": PNG_COMPRESSION}} if fmt == "png" else {}
     write_atomic(path, partial(figure.savefig, format=fmt, dpi=dpi, **options))
