@@ -20,7 +20,9 @@ import numbers
 from dataclasses import dataclass
 
 from ..errors import MissionError
+from ..physics.models import TRANSFER_MODELS, TransferModel, transfer_model
 from ..physics.orbits import J2, R_EARTH
+from .vehicle import Vehicle
 
 DRIFT_INCLINATION_RULES = ("table3", "free")
 
@@ -82,6 +84,14 @@ class Mission:
         Orbit the launcher leaves the vehicle on at t0 (Part II-C): a fictitious debris
         fixed at the head of the path, so the first transfer's cost and duration count.
         It is not one of the ``n`` debris and has no operations.
+    transfer : {"impulsive", "low-thrust"}
+        Transfer model (:mod:`~sdc_cvx.physics.models`): the paper's impulsive drift
+        leg, or the low-thrust leg (spiral, plane change, coast, spiral), which needs
+        the vehicle's acceleration.
+    vehicle : Vehicle or dict, optional
+        The servicing vehicle (:class:`~sdc_cvx.inputs.vehicle.Vehicle`): its
+        acceleration for ``transfer = "low-thrust"``, and the propellant and masses of
+        the plan when its dry mass and Isp are given.
     """
 
     n: int = 5
@@ -100,8 +110,12 @@ class Mission:
     exclude: tuple[str, ...] = ()
     first: str | None = None
     injection: tuple[float, float, float, float] | None = None
+    transfer: str = "impulsive"
+    vehicle: Vehicle | None = None
 
     def __post_init__(self):
+        if isinstance(self.vehicle, dict):
+            object.__setattr__(self, "vehicle", _vehicle_of(self.vehicle))
         object.__setattr__(self, "drift_altitude_km", tuple(self.drift_altitude_km))
         for name in ("must_include", "exclude"):
             value = getattr(self, name)
@@ -221,7 +235,26 @@ class Mission:
             "below every candidate's perigee (the usual value is 50 km), or exclude those debris"
         ]
 
+    def _vehicle_problems(self):
+        if self.transfer not in TRANSFER_MODELS:
+            yield f"transfer must be one of {TRANSFER_MODELS}, got {self.transfer!r}"
+        if self.vehicle is not None and not isinstance(self.vehicle, Vehicle):
+            yield f"vehicle must be a Vehicle or a table of its fields, got {self.vehicle!r}"
+        elif self.transfer == "low-thrust":
+            missing = (["a [vehicle] table with accel_mps2 (or thrust_n, dry_mass_kg and "
+                        "propellant_kg)"] if self.vehicle is None
+                       else self.vehicle.missing_for_acceleration())  # fmt: skip
+            if missing:
+                yield ("transfer = 'low-thrust' needs the vehicle's acceleration: missing "
+                       + ", ".join(missing))  # fmt: skip
+
+    def transfer_model(self) -> TransferModel:
+        """The transfer model of the mission, with the vehicle's acceleration."""
+        accel = self.vehicle.acceleration(self.n) if self.vehicle is not None else None
+        return transfer_model(self.transfer, accel_mps2=accel)
+
     def _option_problems(self):
+        yield from self._vehicle_problems()
         if self.deorbit_by not in ("kit", "vehicle"):
             yield f"deorbit_by must be 'kit' or 'vehicle', got {self.deorbit_by!r}"
         if not (_is_real(self.deorbit_perigee_km) and self.deorbit_perigee_km >= 0):
@@ -287,7 +320,17 @@ class Mission:
             out[name] = list(out[name])
         if self.injection is not None:
             out["injection"] = list(self.injection)
+        out["vehicle"] = None if self.vehicle is None else self.vehicle.to_dict()
         return out
+
+
+def _vehicle_of(table: dict) -> Vehicle:
+    """A :class:`Vehicle` from a table of its fields (unknown fields named)."""
+    unknown = sorted(set(table) - {f.name for f in dataclasses.fields(Vehicle)})
+    if unknown:
+        known = ", ".join(f.name for f in dataclasses.fields(Vehicle))
+        raise MissionError(f"unknown vehicle field(s) {', '.join(unknown)}: expected {known}")
+    return Vehicle(**table)
 
 
 def _is_real(value) -> bool:

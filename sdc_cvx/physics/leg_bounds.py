@@ -34,12 +34,20 @@ References
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import ClassVar, NamedTuple
 
 import numpy as np
 
 from .orbits import MU_EARTH, SECONDS_PER_DAY, circular_a_for_raan_rate, raan_rate
-from .transfer import CLOSED_GAP_RAD, NodeOrbits, minimize_on_interval, transfer_dv
+from .transfer import (
+    CLOSED_GAP_RAD,
+    NodeOrbits,
+    cheapest_transfer,
+    minimize_on_interval,
+    transfer_duration,
+    transfer_dv,
+)
 
 TWO_PI = 2.0 * np.pi
 GRID_POINTS = 513
@@ -47,6 +55,28 @@ GRID_POINTS = 513
 MAX_MINIMA = 4
 """Interior local minima kept per edge and inclination (the cost has at most one per piece)."""
 INCLINATION_RULES = ("table3", "free")
+
+
+class LegAtDates(NamedTuple):
+    """The cheapest leg of an edge between two dates, in any transfer model.
+
+    Attributes
+    ----------
+    cost : ndarray
+        ΔV [m/s]; ``inf`` where no leg of the model flies between the two dates.
+    a_drift, inc_drift : ndarray
+        Drift radius [m] and inclination [rad] (``nan`` where none).
+    side : ndarray
+        +1 where the drift orbit precesses faster than the target, -1 slower (0: none).
+    laps : ndarray of int
+        Relative laps of the coast beyond the first that closes the RAAN gap.
+    """
+
+    cost: np.ndarray
+    a_drift: np.ndarray
+    inc_drift: np.ndarray
+    side: np.ndarray
+    laps: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -79,28 +109,31 @@ class LegCosts:
     candidates: np.ndarray
     candidate_cost: np.ndarray
     mu: float = MU_EARTH
+    model: ImpulsiveModel = field(default_factory=lambda: IMPULSIVE)
 
     @classmethod
     def build(cls, origin: NodeOrbits, target: NodeOrbits, a_low: float, a_high: float, *,
-              mu: float = MU_EARTH, chunk: int = 2048,
+              mu: float = MU_EARTH, chunk: int = 2048, model=None,
               on_chunk: Callable[[int, int], None] | None = None) -> LegCosts:  # fmt: skip
         """Scan every edge's cost over the band and keep its possible minimisers.
 
-        ``on_chunk(done, total)`` is called after each ``chunk`` of edges (the longest
-        step of a large catalog's setup: a clock and a fraction done); it may raise to
-        stop the build.
+        ``model`` is the transfer model (:mod:`~sdc_cvx.physics.models`; default the
+        impulsive drift leg).  ``on_chunk(done, total)`` is called after each ``chunk``
+        of edges (the longest step of a large catalog's setup: a clock and a fraction
+        done); it may raise to stop the build.
         """
+        model = IMPULSIVE if model is None else model
         count = len(origin.a)
         candidates = np.full((count, 2, 2 + MAX_MINIMA), np.nan)
         for start in range(0, count, chunk):
             rows = slice(start, min(count, start + chunk))
             o, t = origin.take(rows), target.take(rows)
             for c, inc in enumerate((o.inc, t.inc)):
-                candidates[rows, c] = _possible_minimisers(o, t, inc, a_low, a_high, mu)
+                candidates[rows, c] = _possible_minimisers(o, t, inc, a_low, a_high, mu, model)
             if on_chunk is not None:
                 on_chunk(rows.stop, count)
         self = cls(origin, target, float(a_low), float(a_high), candidates,
-                   np.empty(0), mu)  # fmt: skip
+                   np.empty(0), mu, model)  # fmt: skip
         edges = np.arange(count)[:, None, None]
         choice = np.arange(2)[None, :, None]
         cost = self.cost(edges, choice, np.where(np.isnan(candidates), a_low, candidates))
@@ -114,8 +147,8 @@ class LegCosts:
     def cost(self, e, c, a):
         """Transfer cost [m/s] of edge ``e``, inclination choice ``c``, drift radius ``a`` [m]."""
         o, t = self.origin, self.target
-        return transfer_dv(o.a[e], o.inc[e], t.a[e], t.inc[e], a, self.inclination(e, c),
-                           mu=self.mu)  # fmt: skip
+        return self.model.leg_dv(o.a[e], o.inc[e], t.a[e], t.inc[e], a, self.inclination(e, c),
+                                 mu=self.mu)  # fmt: skip
 
     def minimum_on(self, e, c, lo, hi):
         """Exact minimum [m/s] of the cost over drift radii ``[lo, hi]`` (``inf`` if empty).
@@ -146,14 +179,26 @@ class LegCosts:
         """Cheapest transfer [m/s] of edges ``e`` at any date, either inclination, any radius."""
         return np.minimum(*(self.minimum_on(e, c, self.a_low, self.a_high)[0] for c in (0, 1)))
 
+    def cost_at(self, e, t, t_arrive, *, rule: str, j2: float, t_min: float = 0.0) -> LegAtDates:
+        """Exact cheapest leg of edges ``e`` between dates [days], in this table's model."""
+        return self.model.cost_at(self, e, t, t_arrive, rule=rule, j2=j2, t_min=t_min)
 
-def _possible_minimisers(origin: NodeOrbits, target: NodeOrbits, inc, a_low, a_high, mu):
+    def box_bound(self, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0):
+        """Lower bound [m/s] of edges ``e`` over boxes of dates [days], in this table's model."""
+        return self.model.box_bound(self, e, t1, t2, t3, t4, rule=rule, j2=j2, t_min=t_min)
+
+    def special_dates(self, e: int, start: float, stop: float) -> np.ndarray:
+        """Dates in [start, stop] [days] a schedule of edge ``e`` may need exactly."""
+        return self.model.special_dates(self, e, start, stop)
+
+
+def _possible_minimisers(origin: NodeOrbits, target: NodeOrbits, inc, a_low, a_high, mu, model):
     """Kinks and interior local minima of one inclination's cost over the band, (M, K)."""
     grid = np.linspace(a_low, a_high, GRID_POINTS)
 
     def cost(a):
-        return transfer_dv(origin.a[:, None], origin.inc[:, None], target.a[:, None],
-                           target.inc[:, None], a, inc[:, None], mu=mu)  # fmt: skip
+        return model.leg_dv(origin.a[:, None], origin.inc[:, None], target.a[:, None],
+                            target.inc[:, None], a, inc[:, None], mu=mu)  # fmt: skip
 
     values = cost(np.broadcast_to(grid, (len(inc), GRID_POINTS)))
     local = (values[:, 1:-1] < values[:, :-2]) & (values[:, 1:-1] <= values[:, 2:])
@@ -177,8 +222,8 @@ def _possible_minimisers(origin: NodeOrbits, target: NodeOrbits, inc, a_low, a_h
         sub_inc = inc[rows]
 
         def sub_cost(a):
-            return transfer_dv(sub.a[:, None], sub.inc[:, None], sub_t.a[:, None],
-                               sub_t.inc[:, None], a, sub_inc[:, None], mu=mu)  # fmt: skip
+            return model.leg_dv(sub.a[:, None], sub.inc[:, None], sub_t.a[:, None],
+                                sub_t.inc[:, None], a, sub_inc[:, None], mu=mu)  # fmt: skip
 
         a_min, _ = minimize_on_interval(sub_cost, lo, hi, n_grid=9, n_golden=40)
         out[rows, 2 + rank] = a_min
@@ -245,8 +290,9 @@ def leg_cost_at(legs: LegCosts, e, t, t_arrive, *, rule: str, j2: float, t_min: 
 
     Returns
     -------
-    cost, a_drift, inc_drift, side : ndarray
-        ``inf`` / ``nan`` / ``nan`` / 0 where no drift orbit of the band does it.
+    LegAtDates
+        ``inf`` / ``nan`` / ``nan`` / 0 where no drift orbit of the band does it; no
+        extra laps (the drift rate closes the gap's first wrap).
     """
     e, t, t_arrive = np.broadcast_arrays(np.asarray(e), np.asarray(t, float),
                                          np.asarray(t_arrive, float))  # fmt: skip
@@ -280,7 +326,7 @@ def leg_cost_at(legs: LegCosts, e, t, t_arrive, *, rule: str, j2: float, t_min: 
             best_a = np.where(better, a, best_a)
             best_inc = np.where(better, legs.inclination(e, c), best_inc)
             best_side = np.where(better, side, best_side)
-    return best, best_a, best_inc, best_side
+    return LegAtDates(best, best_a, best_inc, best_side, np.zeros(e.shape, dtype=int))
 
 
 def leg_box_bound(legs: LegCosts, e, t1, t2, t3, t4, *, rule: str, j2: float,
@@ -377,3 +423,57 @@ def _ratio_range(gap_on_piece, pa, pb, t3, t4, t_min):
         high = np.maximum(high, np.where(inside, ratio, -np.inf))
         feasible = feasible | inside
     return low, high, feasible
+
+
+def crossing_dates(legs: LegCosts, e: int, start: float, stop: float) -> np.ndarray:
+    """Dates in [start, stop] [days] where the RAANs of edge ``e``'s two debris coincide."""
+    rel = (legs.target.rate[e] - legs.origin.rate[e]) * SECONDS_PER_DAY
+    gap0 = legs.target.raan[e] - legs.origin.raan[e]
+    if rel == 0.0:
+        return np.empty(0)
+    g1, g2 = sorted((gap0 + rel * start, gap0 + rel * stop))
+    ks = np.arange(np.ceil(g1 / TWO_PI), np.floor(g2 / TWO_PI) + 1)
+    return np.sort((TWO_PI * ks - gap0) / rel)
+
+
+@dataclass(frozen=True)
+class ImpulsiveModel:
+    """The paper's impulsive drift leg (Part III): Hohmann, coast, Hohmann.
+
+    A transfer model (:class:`~sdc_cvx.physics.models.TransferModel`): the leg's cost
+    and duration (:mod:`~sdc_cvx.physics.transfer`), its exact cost between two dates
+    and its bound over a box of dates (this module), the dates a schedule may need
+    exactly (RAAN crossings: zero-length legs) and the pre-optimised transfer (Part IV-B).
+    """
+
+    name: ClassVar[str] = "impulsive"
+
+    def leg_dv(self, origin_a, origin_inc, target_a, target_inc, a_drift, inc_drift, *,
+               mu=MU_EARTH):  # fmt: skip
+        """Leg ΔV [m/s] (Eq. 11-13)."""
+        return transfer_dv(origin_a, origin_inc, target_a, target_inc, a_drift, inc_drift, mu=mu)
+
+    def leg_seconds(self, origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_depart,
+                    *, laps=0, j2, mu=MU_EARTH):  # fmt: skip
+        """Leg duration [s] leaving at ``t_depart`` [s] (Eq. 10), plus ``laps`` relative laps."""
+        seconds = transfer_duration(origin, target, a_drift, inc_drift, t_depart, j2=j2, mu=mu)
+        rel = np.abs(raan_rate(a_drift, 0.0, inc_drift, j2=j2, mu=mu) - target.rate)
+        with np.errstate(divide="ignore"):
+            return seconds + np.where(np.asarray(laps) > 0, laps * TWO_PI / rel, 0.0)
+
+    def phase_days(self, origin_a, origin_inc, target_a, target_inc, a_drift, duration_days):
+        """The leg's phases [days]: all coast (the impulses take no time)."""
+        return {"coast_days": np.asarray(duration_days, dtype=float)}
+
+    cost_at = staticmethod(leg_cost_at)
+    box_bound = staticmethod(leg_box_bound)
+    special_dates = staticmethod(crossing_dates)
+    cheapest_transfer = staticmethod(cheapest_transfer)
+
+    def describe(self) -> dict:
+        """The model's name and parameters, for ``solution.json``."""
+        return {"transfer": self.name}
+
+
+IMPULSIVE = ImpulsiveModel()
+"""The impulsive drift leg, the paper's and the default transfer model."""

@@ -22,8 +22,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .leg_bounds import IMPULSIVE
 from .orbits import SECONDS_PER_DAY
-from .transfer import NodeOrbits, transfer_duration, transfer_dv
+from .transfer import NodeOrbits
 
 
 class PlanEvaluation(NamedTuple):
@@ -46,9 +47,9 @@ class PlanEvaluation(NamedTuple):
     end_day: float
 
 
-def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=0.0,
-                  j2) -> PlanEvaluation:  # fmt: skip
-    """Chain the legs of ``path`` through the true model (Eq. 10-13).
+def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=0.0, j2,
+                  model=None, laps=0) -> PlanEvaluation:  # fmt: skip
+    """Chain the legs of ``path`` through the true model (Eq. 10-13, or another transfer model).
 
     The vehicle is at ``path[0]`` at t = 0; each leg leaves after the operations at
     its debris (``deorbit_days``, the paper's "as soon as possible", Part III-H),
@@ -66,13 +67,19 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
         T_deorb [days]: one value, or one per debris of ``orbits`` (0 for an
         injection orbit).
     j2 : float
+    model : TransferModel, optional
+        The leg physics (:mod:`~sdc_cvx.physics.models`); default the impulsive drift leg.
+    laps : int or array_like of int
+        Relative laps of each leg's coast beyond the first that closes the RAAN gap.
 
     Returns
     -------
     PlanEvaluation
     """
+    model = IMPULSIVE if model is None else model
     path = np.asarray(path, dtype=int)
     legs = len(path) - 1
+    laps = np.broadcast_to(np.asarray(laps, dtype=int), (legs,))
     a_drift = np.broadcast_to(np.asarray(a_drift, dtype=float), (legs,))
     inc_drift = np.broadcast_to(np.asarray(inc_drift, dtype=float), (legs,))
     departure, duration, arrival = np.empty(legs), np.empty(legs), np.empty(legs)
@@ -81,12 +88,11 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
     for k in range(legs):
         origin, target = orbits.take([path[k]]), orbits.take([path[k + 1]])
         departure[k] = ready
-        seconds = transfer_duration(
-            origin, target, a_drift[k], inc_drift[k], departure[k] * SECONDS_PER_DAY, j2=j2
-        )
+        seconds = model.leg_seconds(origin, target, a_drift[k], inc_drift[k],
+                                    departure[k] * SECONDS_PER_DAY, laps=laps[k], j2=j2)
         duration[k] = seconds[0] / SECONDS_PER_DAY
         arrival[k] = departure[k] + duration[k]
         ready = arrival[k] + float(ops[path[k + 1]])
     origins, targets = orbits.take(path[:-1]), orbits.take(path[1:])
-    dv = transfer_dv(origins.a, origins.inc, targets.a, targets.inc, a_drift, inc_drift)
+    dv = model.leg_dv(origins.a, origins.inc, targets.a, targets.inc, a_drift, inc_drift)
     return PlanEvaluation(departure, duration, arrival, dv, float(ready))

@@ -185,7 +185,7 @@ def certified_nodes(nodes: MissionNodes, mission: Mission) -> CertifiedNodes:
         cost_mps=np.asarray(nodes.cost_mps, dtype=float), first=nodes.first,
         must_visit=nodes.must_visit, excluded=nodes.excluded, tmax_days=mission.tmax_days,
         tmin_days=mission.min_transfer_days, rule=mission.drift_inclination,
-        j2=mission.j2)  # fmt: skip
+        j2=mission.j2, model=mission.transfer_model())  # fmt: skip
 
 
 def _record(row: dict, ids, index: int) -> IterationRecord:
@@ -257,7 +257,8 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
     """
     path = [int(k) for k in path]
     plan, plan_notes = schedule_plan(orbits, path, schedule, deorbit_days=nodes.deorbit_days,
-                                     tmax_days=mission.tmax_days, j2=mission.j2)  # fmt: skip
+                                     tmax_days=mission.tmax_days, j2=mission.j2,
+                                     model=mission.transfer_model())  # fmt: skip
     ids = nodes.catalog.ids
     total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
     lower = float(min(lower_bound_mps, total))

@@ -6,15 +6,17 @@ the operations at the debris reached, and the mission ends by T_max.  Choosing e
 leg's arrival date is the same as choosing its drift orbit, so the problem is a chain
 of dates ``x_0 <= x_1 <= ... <= x_L`` (x_k: the date the vehicle is ready to leave the
 k-th debris; x_L: the end) with cost ``sum_k c_k(x_k, x_{k+1} - ops_{k+1})``, where
-``c_k`` is the exact cost of leg k between two dates (:func:`leg_cost_at`).
+``c_k`` is the exact cost of leg k between two dates (``LegCosts.cost_at``, in the
+transfer model of the cost tables: :mod:`~sdc_cvx.physics.models`).
 
 A dynamic programme over date cells brackets the optimum:
 
 - lower bound: each position's dates are split into cells; a leg between a cell of
-  position k and a cell of position k+1 costs at least :func:`leg_box_bound`, and the
+  position k and a cell of position k+1 costs at least ``LegCosts.box_bound``, and the
   cheapest chain of cells under those bounds is a lower bound of every schedule;
 - upper bound: the same programme over exact costs between dates of a grid (cell ends
-  and centres, and the dates where two RAANs cross, for zero-length legs) is a schedule
+  and centres, and the dates a leg may need exactly: for the impulsive leg, where two
+  RAANs cross, for zero-length legs) is a schedule
   that flies;
 - the cells of the lower bound's chain are halved, cells that cannot hold a schedule
   better than the upper bound are dropped, and the two are computed again until they
@@ -34,8 +36,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..physics.leg_bounds import TWO_PI, LegCosts, leg_box_bound, leg_cost_at
-from ..physics.orbits import SECONDS_PER_DAY
+from ..physics.leg_bounds import LegCosts
 from ..physics.plan import PlanEvaluation, evaluate_plan
 
 INITIAL_CELLS = 24
@@ -99,6 +100,8 @@ class PathSchedule:
         Per leg [days after t0].
     a_drift, inc_drift, side : ndarray
         Per leg: drift radius [m], inclination [rad], side of the asymptote.
+    laps : ndarray of int
+        Per leg: relative laps of the coast beyond the first that closes the RAAN gap.
     dv_mps : ndarray
         Per leg [m/s].
     end_day : float
@@ -120,6 +123,7 @@ class PathSchedule:
     rounds: int
     cells: int
     seconds: float
+    laps: np.ndarray = field(repr=False, default_factory=lambda: np.zeros(0, dtype=int))
 
     @property
     def gap_mps(self) -> float:
@@ -184,8 +188,8 @@ class _BoundCache:
         rr, cc = np.nonzero(~known)
         if len(rr):
             ops = problem.ops_days[k + 1]
-            out[rr, cc] = leg_box_bound(
-                problem.legs, problem.edges[k], cells_from.lo[rr], cells_from.hi[rr],
+            out[rr, cc] = problem.legs.box_bound(
+                problem.edges[k], cells_from.lo[rr], cells_from.hi[rr],
                 cells_to.lo[cc] - ops, cells_to.hi[cc] - ops, rule=problem.rule,
                 j2=problem.j2, t_min=problem.tmin_days)  # fmt: skip
         self.rows, self.cols, self.matrix = cells_from.ids.copy(), cells_to.ids.copy(), out
@@ -198,17 +202,6 @@ def _positions(old_ids, ids):
     where = np.full(size, -1, dtype=int)
     where[old_ids] = np.arange(len(old_ids))
     return where[ids]
-
-
-def crossing_dates(legs: LegCosts, e: int, start: float, stop: float) -> np.ndarray:
-    """Dates in [start, stop] [days] where the RAANs of edge ``e``'s two debris coincide."""
-    rel = (legs.target.rate[e] - legs.origin.rate[e]) * SECONDS_PER_DAY
-    gap0 = legs.target.raan[e] - legs.origin.raan[e]
-    if rel == 0.0:
-        return np.empty(0)
-    g1, g2 = sorted((gap0 + rel * start, gap0 + rel * stop))
-    ks = np.arange(np.ceil(g1 / TWO_PI), np.floor(g2 / TWO_PI) + 1)
-    return np.sort((TWO_PI * ks - gap0) / rel)
 
 
 def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 0.0,
@@ -296,12 +289,13 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
 
 
 def _special_dates(problem: PathProblem, earliest):
-    """Per position, dates a schedule may need exactly: RAAN crossings (zero-length legs)."""
+    """Per position, dates a schedule may need exactly (the model's: for the impulsive leg,
+    RAAN crossings, where a leg of zero length is possible)."""
     out = [np.empty(0) for _ in range(problem.n_legs + 1)]
     if problem.tmin_days > 0:
         return out
     for k, e in enumerate(problem.edges):
-        dates = crossing_dates(problem.legs, e, earliest[k], problem.tmax_days)
+        dates = problem.legs.special_dates(e, earliest[k], problem.tmax_days)
         out[k] = np.concatenate([out[k], dates])
         out[k + 1] = np.concatenate([out[k + 1], dates + problem.ops_days[k + 1]])
     return out
@@ -332,9 +326,8 @@ def _grid_schedule(problem: PathProblem, cells, special, forward, backward):
     for k in range(L):
         t = points[k][:, None]
         t_arrive = points[k + 1][None, :] - problem.ops_days[k + 1]
-        cost, *_ = leg_cost_at(problem.legs, problem.edges[k], t, t_arrive, rule=problem.rule,
-                               j2=problem.j2, t_min=problem.tmin_days)  # fmt: skip
-        costs.append(cost)
+        costs.append(problem.legs.cost_at(problem.edges[k], t, t_arrive, rule=problem.rule,
+                                          j2=problem.j2, t_min=problem.tmin_days).cost)
     value = np.zeros(len(points[L]))
     choice = [None] * L
     for k in range(L - 1, -1, -1):
@@ -354,33 +347,34 @@ def _schedule(problem: PathProblem, dates, upper, lower, rounds, cells, start_cl
     ops = np.asarray(problem.ops_days)
     departure = dates[:-1]
     arrival = dates[1:] - ops[1:]
-    cost, a, inc, side = leg_cost_at(problem.legs, np.asarray(problem.edges), departure, arrival,
-                                     rule=problem.rule, j2=problem.j2,
-                                     t_min=problem.tmin_days)  # fmt: skip
+    leg = problem.legs.cost_at(np.asarray(problem.edges), departure, arrival, rule=problem.rule,
+                               j2=problem.j2, t_min=problem.tmin_days)  # fmt: skip
     return PathSchedule(
-        float(np.sum(cost)),
+        float(np.sum(leg.cost)),
         float(lower),
         departure,
         arrival,
-        a,
-        inc,
-        side,
-        cost,
+        leg.a_drift,
+        leg.inc_drift,
+        leg.side,
+        leg.cost,
         float(dates[L]),
         rounds,
         cells,
         time.perf_counter() - start_clock,
+        leg.laps,
     )
 
 
 def _no_schedule(L, lower, rounds, cells, start_clock):
     nan = np.full(L, np.nan)
     return PathSchedule(np.inf, float(lower), nan, nan, nan, nan, np.zeros(L), nan, np.nan,
-                        rounds, cells, time.perf_counter() - start_clock)  # fmt: skip
+                        rounds, cells, time.perf_counter() - start_clock,
+                        np.zeros(L, dtype=int))  # fmt: skip
 
 
 def schedule_plan(orbits, path, schedule: PathSchedule, *, deorbit_days, tmax_days: float,
-                  j2: float) -> tuple[PlanEvaluation, list[str]]:  # fmt: skip
+                  j2: float, model=None) -> tuple[PlanEvaluation, list[str]]:  # fmt: skip
     """A certified schedule flown in the true model (Eq. 10 arrivals), and notes.
 
     Parameters
@@ -393,6 +387,8 @@ def schedule_plan(orbits, path, schedule: PathSchedule, *, deorbit_days, tmax_da
     deorbit_days : ndarray
         Operations time at every node [days].
     tmax_days, j2 : float
+    model : TransferModel, optional
+        The transfer model the schedule was found in (default impulsive).
 
     Returns
     -------
@@ -401,8 +397,9 @@ def schedule_plan(orbits, path, schedule: PathSchedule, *, deorbit_days, tmax_da
         where a zero-length leg (RAANs crossing) rounds to a full cycle in Eq. 10's wrap
         (then a note says so).
     """
+    laps = schedule.laps if len(schedule.laps) else 0
     plan = evaluate_plan(orbits, list(path), schedule.a_drift, schedule.inc_drift,
-                         deorbit_days=deorbit_days, j2=j2)  # fmt: skip
+                         deorbit_days=deorbit_days, j2=j2, model=model, laps=laps)  # fmt: skip
     if abs(plan.end_day - schedule.end_day) < 1e-6 and plan.end_day <= tmax_days + 1e-6:
         return plan, []
     plan = PlanEvaluation(schedule.departure_days, schedule.arrival_days - schedule.departure_days,

@@ -6,7 +6,7 @@ finds the optimum eventually, but with a poor plan in hand the first relaxation 
 carry thousands of arcs (lg8 of the reference cases: 46 s for the first one against 2 s
 once the optimum is held).  This module finds near-optimal plans before any MILP.
 
-Every leg is priced exactly (:func:`~sdc_cvx.physics.leg_bounds.leg_cost_at`) between
+Every leg is priced exactly (``LegCosts.cost_at``) between
 the dates of one grid over ``[0, T_max]``; a debris sequence then has a cheapest
 schedule on the grid by a dynamic programme over the dates (a min-plus product per
 leg).  A beam search grows sequences leg by leg, each carrying that programme's vector
@@ -36,7 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...physics.leg_bounds import LegCosts, leg_cost_at
+from ...physics.leg_bounds import LegCosts
 
 GRID_POINTS = 1_200_000
 """Leg costs evaluated for the grid at most (about 2 s): the dates per debris are fewer
@@ -153,9 +153,8 @@ def _leg_table(legs: LegCosts, edges, origin, dates, nodes, deadline) -> np.ndar
     for k, e in enumerate(edges):
         if time.perf_counter() > deadline:
             return None
-        table[k, p, q] = leg_cost_at(legs, np.full(len(p), e), dates[p] + ops[origin[k]],
-                                     dates[q], rule=nodes.rule, j2=nodes.j2,
-                                     t_min=nodes.tmin_days)[0]  # fmt: skip
+        table[k, p, q] = legs.cost_at(np.full(len(p), e), dates[p] + ops[origin[k]], dates[q],
+                                      rule=nodes.rule, j2=nodes.j2, t_min=nodes.tmin_days).cost
     return table
 
 

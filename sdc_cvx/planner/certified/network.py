@@ -3,7 +3,7 @@
 Each debris' dates ``[0, T_max]`` are split into cells (:class:`DateCells`); an arc is a
 leg between two debris leaving in one cell and arriving in another, priced at the exact
 lower bound of its cost over that box of dates
-(:func:`~sdc_cvx.physics.leg_bounds.leg_box_bound`).  :meth:`CellNetwork.pruned` keeps the
+(``LegCosts.box_bound``, in the tables' transfer model).  :meth:`CellNetwork.pruned` keeps the
 arcs that can lie on a plan better than the one held and solves the relaxation over them
 by labels (:mod:`~sdc_cvx.network.path_bounds`); :func:`beam_paths` finds cheap paths
 of the network, whose cells :func:`refine_cells` halves.
@@ -29,7 +29,7 @@ from ...network.path_bounds import (
     leaving,
     walk_bounds,
 )
-from ...physics.leg_bounds import LegCosts, leg_box_bound
+from ...physics.leg_bounds import LegCosts
 from .relaxation import Arcs
 from .results import CertifiedNodes
 
@@ -132,8 +132,8 @@ class CellNetwork:
                 raise OutOfTime(f"time limit reached while bounding the {len(edge)} arcs of "
                                  "a network of date cells")  # fmt: skip
             j = edge_to[edge[part]]  # in parts: the bound's temporaries stay small
-            bound[part] = leg_box_bound(
-                legs_table, edge[part], self.node_lo[tail[part]], self.node_hi[tail[part]],
+            bound[part] = legs_table.box_bound(
+                edge[part], self.node_lo[tail[part]], self.node_hi[tail[part]],
                 self.node_lo[head[part]] - nodes.ops_days[j],
                 self.node_hi[head[part]] - nodes.ops_days[j], rule=nodes.rule, j2=nodes.j2,
                 t_min=nodes.tmin_days)  # fmt: skip

@@ -3,10 +3,11 @@ and the result with its bracket (:func:`~sdc_cvx.planner.certified.search.certif
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...physics.leg_bounds import IMPULSIVE
 from ..fixed_path import PathSchedule
 
 
@@ -25,6 +26,8 @@ class CertifiedNodes:
     tmax_days, tmin_days : float
     rule : str
     j2 : float
+    model : TransferModel
+        The leg physics (:mod:`~sdc_cvx.physics.models`), impulsive by default.
     """
 
     legs: int
@@ -37,6 +40,7 @@ class CertifiedNodes:
     tmin_days: float
     rule: str
     j2: float
+    model: object = field(default=IMPULSIVE)
 
 
 @dataclass(frozen=True)

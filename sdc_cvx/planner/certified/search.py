@@ -109,7 +109,8 @@ class _Search:
             "cost tables of every edge"
         )
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
-                                   a_low, a_high, on_chunk=cost_table_clock(self))  # fmt: skip
+                                   a_low, a_high, model=nodes.model,
+                                   on_chunk=cost_table_clock(self))  # fmt: skip
         self.edge_floor = self.legs.floor(np.arange(len(self.edge_from)))
         # the first network holds every edge: fewer cells when they are many (481 TLE
         # fragments: 230 880 edges, 2 cells each instead of 8 keeps it near 1.4 M arcs)

@@ -1,0 +1,95 @@
+"""Transfer models: the leg physics the planners use, chosen by name once.
+
+A *transfer model* is what every room of the package needs to know of a leg between
+two debris (the pvlib ``ModelChain`` shape: one signature, swappable models):
+
+- ``leg_dv(origin_a, origin_inc, target_a, target_inc, a_drift, inc_drift)`` [m/s] and
+  ``leg_seconds(origin, target, a_drift, inc_drift, t_depart, *, laps, j2)`` [s]: the
+  leg flown in the true model (plans, reports, the paper's method);
+- ``cost_at(legs, e, t, t_arrive, *, rule, j2, t_min)``: the exact cheapest leg
+  between two dates [days] (:class:`~sdc_cvx.physics.leg_bounds.LegAtDates`; the
+  certified search's plans);
+- ``box_bound(legs, e, t1, t2, t3, t4, *, rule, j2, t_min)``: a lower bound of the cost
+  over a box of dates, never above the cost of a leg in the box and exact in the limit
+  (the certified search's bounds; each model's proof is in ``docs/design.md``);
+- ``special_dates(legs, e, start, stop)``: dates a schedule may need exactly;
+- ``cheapest_transfer(...)``: the pre-optimised leg of Part IV-B (edge table, paper's
+  method);
+- ``phase_days(...)``: the leg's phases for the report; ``describe()``: name and
+  parameters for ``solution.json``.
+
+:class:`~sdc_cvx.physics.leg_bounds.LegCosts` tables carry their model, so the
+certified search, campaigns and reports ask the table and never test a model's name.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+.. [2] W. F. Holmgren, C. W. Hansen and M. A. Mikofski, "pvlib python: a python package
+   for modeling solar energy systems", Journal of Open Source Software 3(29), 884, 2018
+   (the ModelChain pattern).
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+from .leg_bounds import IMPULSIVE, ImpulsiveModel, LegAtDates
+from .low_thrust import LowThrustModel
+
+TRANSFER_MODELS = ("impulsive", "low-thrust")
+"""Names of the transfer models (``Mission.transfer``)."""
+
+
+class TransferModel(Protocol):
+    """What a transfer model provides (see the module docstring)."""
+
+    name: str
+
+    def leg_dv(self, origin_a, origin_inc, target_a, target_inc, a_drift, inc_drift, *, mu=...):
+        ...
+
+    def leg_seconds(self, origin, target, a_drift, inc_drift, t_depart, *, laps=0, j2, mu=...):
+        ...
+
+    def cost_at(self, legs, e, t, t_arrive, *, rule, j2, t_min=0.0) -> LegAtDates: ...
+
+    def box_bound(self, legs, e, t1, t2, t3, t4, *, rule, j2, t_min=0.0): ...
+
+    def special_dates(self, legs, e, start, stop): ...
+
+    def cheapest_transfer(self, origin, target, t_depart, max_duration, a_low, a_high, *,
+                          inclination="table3", sides=(1.0, -1.0), j2, mu=...): ...  # fmt: skip
+
+    def phase_days(self, origin_a, origin_inc, target_a, target_inc, a_drift,
+                   duration_days) -> dict: ...  # fmt: skip
+
+    def describe(self) -> dict: ...
+
+
+def transfer_model(name: str = "impulsive", *, accel_mps2: float | None = None) -> TransferModel:
+    """The transfer model called ``name``.
+
+    Parameters
+    ----------
+    name : {"impulsive", "low-thrust"}
+    accel_mps2 : float, optional
+        Thrust acceleration [m/s^2]; required by ``"low-thrust"``.
+
+    Raises
+    ------
+    ValueError
+        Unknown name, or a low-thrust model without an acceleration.
+    """
+    if name == "impulsive":
+        return IMPULSIVE
+    if name == "low-thrust":
+        if accel_mps2 is None:
+            raise ValueError("the low-thrust transfer model needs the vehicle's acceleration "
+                             "(accel_mps2, or thrust_n with its masses)")  # fmt: skip
+        return LowThrustModel(float(accel_mps2))
+    raise ValueError(f"transfer must be one of {TRANSFER_MODELS}, got {name!r}")
+
+
+__all__ = ["TRANSFER_MODELS", "ImpulsiveModel", "LowThrustModel", "TransferModel",
+           "transfer_model"]  # fmt: skip
