@@ -44,6 +44,7 @@ class RunStatus(StrEnum):
     TIME_LIMIT = "time_limit"  # a MILP stopped at its time limit without a solution
     STALLED = "stalled"  # the next MILP would repeat an earlier one: nothing left to change
     WITHIN_GAP = "within_gap"  # certified: within a requested gap wider than OPTIMAL_GAP_REL
+    OVER_CAPACITY = "over_capacity"  # the plan needs more propellant than the tank holds
 
     @property
     def is_solved(self) -> bool:
@@ -67,6 +68,7 @@ _SOLVED = frozenset(
         RunStatus.ITERATION_LIMIT,
         RunStatus.TIME_LIMIT,
         RunStatus.STALLED,
+        RunStatus.OVER_CAPACITY,
     }
 )
 
@@ -84,11 +86,19 @@ class Leg:
     drift_inc_deg: float
     side: int
     dv_mps: float
+    phases: dict = field(default_factory=dict)
+    """The transfer model's phases [days] (low thrust: ``spiral_out_days``,
+    ``plane_change_days``, ``coast_days``, ``spiral_in_days``) and ``laps`` (relative laps
+    of the coast beyond the first that closes the RAAN gap); empty for impulsive legs."""
+    masses: dict = field(default_factory=dict)
+    """With a vehicle's dry mass and Isp: ``propellant_kg`` burned by the leg and the
+    vehicle's ``mass_before_kg`` and ``mass_after_kg`` [kg]; else empty."""
 
     def to_dict(self) -> dict:
         out = asdict(self)
         out["from"], out["to"] = out.pop("from_id"), out.pop("to_id")
-        return out
+        phases, masses = out.pop("phases"), out.pop("masses")
+        return out | phases | masses
 
 
 @dataclass(frozen=True)
@@ -160,6 +170,7 @@ class Solution:
     lower_bound_mps: float | None = None
     gap_requested: float | None = None
     search_trace: tuple[tuple[float, float | None, float | None], ...] = ()
+    vehicle: dict | None = None
 
     @property
     def certified(self) -> bool:
@@ -239,6 +250,8 @@ class Solution:
             "iterations": [record.to_dict() for record in self.iterations],
             "start": None if start is None else start.isoformat(),
             "mission": self.mission.to_dict(),
+            "transfer": self.mission.transfer_model().describe(),
+            "vehicle": self.vehicle,
             "operations": self.operations,
             "model_size": self.model_size,
             "timings": self.timings,
@@ -261,6 +274,19 @@ class Solution:
                 f"          transfers {self.transfers_dv_mps:.1f} m/s + operations "
                 f"{self.operations_dv_mps:.1f} m/s (deorbit by {self.operations.get('scenario')})"
             )
+        if self.mission.transfer != "impulsive":
+            model = self.mission.transfer_model().describe()
+            lines.append(f"transfer  {model.pop('transfer')}"
+                         + "".join(f", {k} {v:g}" for k, v in model.items()))  # fmt: skip
+        if self.vehicle and "propellant_needed_kg" in self.vehicle:
+            v = self.vehicle
+            tank = ("" if v.get("capacity_kg") is None else
+                    f" of {v['capacity_kg']:.1f} kg (margin {v['margin_kg']:.1f} kg)")  # fmt: skip
+            lines.append(f"vehicle   propellant {v['propellant_needed_kg']:.1f} kg{tank}, wet mass "
+                         f"at launch {v['wet_mass_kg']:.1f} kg")  # fmt: skip
+            if v.get("long_burns"):
+                lines.append(f"warning   the burns of {len(v['long_burns'])} leg(s) are long "
+                             "against their coast: the impulsive model may not hold (notes)")
         return "\n".join(lines)
 
     # -- for Python users: the run folder and the figures (issue 14) ------------------

@@ -12,7 +12,15 @@ import click
 
 from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, SolverFailure
 from ..milp.types import DEFAULT_BACKEND
-from .exits import INPUT_ERROR, INTERRUPTED, SOLVER_FAILED, SYSTEM_ERRNOS, exit_code, fail
+from .exits import (
+    INFEASIBLE,
+    INPUT_ERROR,
+    INTERRUPTED,
+    SOLVER_FAILED,
+    SYSTEM_ERRNOS,
+    exit_code,
+    fail,
+)
 from .options import catalog_options, scenario_argument, selection_options, selection_overrides
 from .progress import RunProgress, interruptible, open_progress_log
 from .reading import build_scenario, check_backend, read_catalog, select_candidates
@@ -35,6 +43,11 @@ if TYPE_CHECKING:
 @click.option(
     "--min-transfer-days", type=float, default=None, help="Minimum transfer duration [0 days]."
 )
+@click.option("--transfer", type=click.Choice(["impulsive", "low-thrust"]), default=None,
+              help="Transfer model: impulsive drift legs, or low-thrust spirals (needs the "
+              "vehicle's acceleration: --accel or a [vehicle] table) [impulsive].")
+@click.option("--accel", "accel_mps2", type=float, default=None, metavar="M/S2",
+              help="Thrust acceleration of a low-thrust vehicle [m/s^2] (vehicle.accel_mps2).")
 @click.option("--backend", default=None, help=f"MILP backend, a CVXPY name [{DEFAULT_BACKEND}].")
 @click.option(
     "--method",
@@ -87,15 +100,17 @@ if TYPE_CHECKING:
 )
 def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km, inclination_deg,
         max_eccentricity, ids, exclude_ids, names, types, strict, n, tmax_days, deorbit_days,
-        preopt_days, dv_max_mps,
-        min_transfer_days, backend, method, gap, time_limit_s, mip_gap, threads, fallback,
-        out_dir, quiet, json_out, svg, verbose, progress):  # fmt: skip
+        preopt_days, dv_max_mps, min_transfer_days, transfer, accel_mps2, backend, method, gap,
+        time_limit_s, mip_gap, threads, fallback, out_dir, quiet, json_out, svg, verbose,
+        progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
     SCENARIO.toml (optional; default the paper's case) gives the catalog, mission,
-    solver and candidate filters; the options override it ([defaults] apply when neither
-    sets a value).  The run folder also gets scenario.toml, the scenario as used.  Exit
-    codes: 2 invalid input (nothing written), 3 infeasible mission, 4 solver failure.
+    solver, vehicle and candidate filters; the options override it ([defaults] apply when
+    neither sets a value).  The run folder also gets scenario.toml, the scenario as used.
+    Exit codes: 2 invalid input (nothing written), 3 infeasible mission (or a plan that
+    needs more propellant than the vehicle's tank holds: its folder is written), 4 solver
+    failure.
     """
     from ..network.edges import preoptimize
     from ..planner.api import ignored_options, solve
@@ -110,7 +125,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
         scenario_file, catalog_path=catalog_path, catalog_format=catalog_format,
         catalog_start=start, n=n, tmax_days=tmax_days, deorbit_days=deorbit_days,
         preopt_days=preopt_days, dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days,
-        backend=backend, method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
+        transfer=transfer, **{"vehicle.accel_mps2": accel_mps2}, backend=backend,
+        method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
         threads=threads, verbose=verbose or None,
         fallback=tuple(fallback) or None,
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
@@ -208,6 +224,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
         if start:
             click.echo(start)
         click.echo(f"results   {folder}/solution.json")
+    if solution.status == RunStatus.OVER_CAPACITY:  # written, but never called flyable
+        fail(f"{solution.notes[-1]} (run folder {folder})", INFEASIBLE)
     if not solution.status.is_solved or solution.status in unsettled:
         click.echo(f"warning: {solution.status}; see the notes in solution.json", err=True)
 

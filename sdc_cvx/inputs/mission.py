@@ -313,14 +313,24 @@ class Mission:
         return dataclasses.replace(self, **changes)
 
     def to_dict(self) -> dict:
-        """Plain dict of the parameters (lists for tuples), e.g. for JSON output."""
+        """Plain dict of the parameters (lists for tuples), e.g. for JSON output.
+
+        ``transfer`` only when not impulsive, ``vehicle`` (its fields set) only when given.
+        """
         out = dataclasses.asdict(self)
         out["drift_altitude_km"] = list(self.drift_altitude_km)
         for name in ("must_include", "exclude"):
             out[name] = list(out[name])
         if self.injection is not None:
             out["injection"] = list(self.injection)
-        out["vehicle"] = None if self.vehicle is None else self.vehicle.to_dict()
+        # the impulsive model without a vehicle writes what it wrote before they existed
+        # (a sweep's scenario_sha stays)
+        if self.transfer == "impulsive":
+            del out["transfer"]
+        if self.vehicle is None:
+            del out["vehicle"]
+        else:
+            out["vehicle"] = self.vehicle.to_dict()
         return out
 
 

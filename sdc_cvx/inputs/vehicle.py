@@ -66,15 +66,14 @@ class Vehicle:
             if value is None:
                 continue
             if isinstance(value, bool) or not isinstance(value, numbers.Real):
-                problems.append(f"vehicle {name} must be a number, got {value!r}")
+                problems.append(f"{name} must be a number, got {value!r}")
             elif not math.isfinite(value) or value < 0 or (value == 0 and name != "kit_mass_kg"):
                 relation = ">= 0" if name == "kit_mass_kg" else "> 0"
-                problems.append(f"vehicle {name} must be a finite number {relation}, "
-                                f"got {value!r}")  # fmt: skip
+                problems.append(f"{name} must be a finite number {relation}, got {value!r}")
         if self.thrust_n is not None and self.accel_mps2 is not None:
-            problems.append("vehicle: give thrust_n or accel_mps2, not both")
+            problems.append("give thrust_n or accel_mps2, not both")
         if problems:
-            raise MissionError("; ".join(problems))
+            raise MissionError("invalid vehicle: " + "; ".join(problems))
 
     def launch_mass_kg(self, kits: int) -> float | None:
         """Wet mass with a full tank and ``kits`` kits [kg] (None without the masses)."""

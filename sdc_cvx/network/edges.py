@@ -25,7 +25,7 @@ import pandas as pd
 from ..inputs.catalog import Catalog
 from ..inputs.mission import Mission
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
-from ..physics.transfer import NodeOrbits, cheapest_transfer
+from ..physics.transfer import NodeOrbits
 
 KEPT = "kept"
 TOO_SLOW = "too_slow"
@@ -98,7 +98,7 @@ def preoptimize(
         Candidate debris, RAANs at the mission start t0.
     mission : Mission
         Uses ``preopt_days`` (T0), ``drift_altitude_km``, ``dv_max_mps``,
-        ``drift_inclination`` and ``j2``.
+        ``drift_inclination``, ``j2`` and the transfer model (``transfer``, ``vehicle``).
     departure_day : float or array_like
         Reference departure date of each edge [days after t0]: a scalar, or an array
         of shape (N, N) indexed [i, j].
@@ -114,7 +114,7 @@ def preoptimize(
     i, j = np.nonzero(~np.eye(n, dtype=bool))
     day = np.broadcast_to(np.asarray(departure_day, dtype=float), (n, n))[i, j]
     a_low, a_high = drift_radius_bounds(mission)
-    choice = cheapest_transfer(
+    choice = mission.transfer_model().cheapest_transfer(
         orbits.take(i),
         orbits.take(j),
         day * SECONDS_PER_DAY,

@@ -458,7 +458,7 @@ class ImpulsiveModel:
         """Leg duration [s] leaving at ``t_depart`` [s] (Eq. 10), plus ``laps`` relative laps."""
         seconds = transfer_duration(origin, target, a_drift, inc_drift, t_depart, j2=j2, mu=mu)
         rel = np.abs(raan_rate(a_drift, 0.0, inc_drift, j2=j2, mu=mu) - target.rate)
-        with np.errstate(divide="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore"):
             return seconds + np.where(np.asarray(laps) > 0, laps * TWO_PI / rel, 0.0)
 
     def phase_days(self, origin_a, origin_inc, target_a, target_inc, a_drift, duration_days):

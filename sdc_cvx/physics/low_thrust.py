@@ -181,9 +181,9 @@ def coast_seconds(origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_
     rate_drift = raan_rate(a_drift, 0.0, inc_drift, j2=j2, mu=mu)
     gap = raan_gap(origin, target, t_depart) + target.rate * phases.thrust_seconds
     smallest = drift_duration(gap - phases.raan_thrust, target.rate, rate_drift)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):
         lap = 2.0 * np.pi / np.abs(rate_drift - target.rate)
-    return smallest + np.where(np.asarray(laps) > 0, laps * lap, 0.0)
+        return smallest + np.where(np.asarray(laps) > 0, laps * lap, 0.0)
 
 
 def leg_seconds(origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_depart, accel, *,

@@ -33,7 +33,7 @@ from ..network.edges import drift_radius_bounds, node_orbits
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunStatus, Solution
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import PathSchedule, schedule_plan
-from .nodes import MissionNodes, make_legs
+from .nodes import MissionNodes, make_legs, with_vehicle
 
 if TYPE_CHECKING:  # the paper's room (and CVXPY) is imported only when its method runs
     from .paper import SequentialSettings
@@ -265,9 +265,12 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
     optimal_gap = max(OPTIMAL_GAP_REL * total, OPTIMAL_GAP_MPS) * (1 + 1e-9)
     if status == RunStatus.OPTIMAL and total - lower > optimal_gap:
         status = RunStatus.WITHIN_GAP  # the gap asked for, wider than what is called optimal
+    legs = make_legs(ids, path, schedule.a_drift, schedule.inc_drift, schedule.side, plan,
+                     orbits=orbits, mission=mission, laps=schedule.laps)  # fmt: skip
+    legs, vehicle, status, vehicle_notes = with_vehicle(legs, nodes, path, mission, status)
     return Solution(
         path=tuple(ids[k] for k in path),
-        legs=make_legs(ids, path, schedule.a_drift, schedule.inc_drift, schedule.side, plan),
+        legs=legs,
         total_dv_mps=total,
         total_duration_days=float(plan.end_day),
         status=status,
@@ -278,9 +281,10 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
         catalog=nodes.catalog,
         model_size=dict(model_size or {}),
         timings=dict(timings or {}),
-        notes=tuple(plan_notes) + tuple(notes),  # the search's own notes last
+        notes=tuple(plan_notes) + tuple(notes) + tuple(vehicle_notes),  # the search's, then
         method="certified",
         lower_bound_mps=lower,
         gap_requested=gap_requested,
+        vehicle=vehicle,
         search_trace=tuple(search_trace),
     )

@@ -10,16 +10,20 @@ as :class:`~sdc_cvx.solution.Leg` rows.  The certified search
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..inputs.catalog import Catalog
 from ..inputs.mission import Mission
-from ..physics.orbits import R_EARTH, perigee_lowering_dv
+from ..inputs.vehicle import G0, propellant_budget
+from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, perigee_lowering_dv
 from ..physics.plan import PlanEvaluation
-from ..solution import Leg
+from ..solution import Leg, RunStatus
 
+LONG_BURN = 0.01
+"""Burn time of an impulsive leg, as a fraction of its duration, above which a note says
+the impulsive model may not hold (the paper, Part IV-D)."""
 INJECTION_ID = "injection"
 """The injection orbit's id among the nodes (:attr:`MissionNodes.catalog`)."""
 
@@ -88,8 +92,22 @@ class MissionNodes:
         }  # fmt: skip
 
 
-def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation) -> tuple[Leg, ...]:
-    """Legs of a plan evaluated with the true model, in people's units."""
+def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation, *, orbits=None,
+              mission: Mission | None = None, laps=None) -> tuple[Leg, ...]:  # fmt: skip
+    """Legs of a plan evaluated with the true model, in people's units.
+
+    With ``orbits`` (the nodes' :class:`~sdc_cvx.physics.transfer.NodeOrbits`) and a
+    ``mission`` whose transfer model is not impulsive, each leg carries its phases.
+    """
+    phases = [{} for _ in range(len(path) - 1)]
+    if mission is not None and orbits is not None and mission.transfer != "impulsive":
+        p = np.asarray(path)
+        days = mission.transfer_model().phase_days(
+            orbits.a[p[:-1]], orbits.inc[p[:-1]], orbits.a[p[1:]], orbits.inc[p[1:]],
+            np.asarray(a_drift), plan.duration_days)  # fmt: skip
+        laps = np.zeros(len(p) - 1, dtype=int) if laps is None or not len(laps) else laps
+        phases = [{name: float(v[k]) for name, v in days.items()} | {"laps": int(laps[k])}
+                  for k in range(len(p) - 1)]  # fmt: skip
     return tuple(
         Leg(
             from_id=ids[path[k]],
@@ -101,6 +119,64 @@ def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation) -> tupl
             drift_inc_deg=float(np.rad2deg(inc_drift[k])),
             side=int(side[k]),
             dv_mps=float(plan.dv_mps[k]),
+            phases=phases[k],
         )
         for k in range(len(path) - 1)
     )
+
+
+def with_vehicle(legs: tuple[Leg, ...], nodes: MissionNodes, path, mission: Mission,
+                 status: RunStatus) -> tuple[tuple[Leg, ...], dict | None, RunStatus, list]:
+    """The legs with their propellant and masses, the ``vehicle`` block of the solution,
+    its status and notes.
+
+    Without a vehicle: no change.  With a dry mass and an Isp: the propellant budget
+    (:func:`~sdc_cvx.inputs.vehicle.propellant_budget`, the operations' ΔV at each debris
+    included); a plan that needs more than the tank holds gets the status
+    ``over_capacity`` and a note: it is never reported as flyable.  An impulsive plan
+    with the vehicle's thrust gets each leg's burn time (``burn_s``) and a note on any leg
+    whose burns last more than :data:`LONG_BURN` of it.
+    """
+    vehicle = mission.vehicle
+    if vehicle is None:
+        return legs, None, status, []
+    block = vehicle.to_dict()
+    model = mission.transfer_model().describe()
+    if "accel_mps2" in model:
+        block["accel_mps2_flown"] = model["accel_mps2"]
+    if not vehicle.can_budget():
+        return legs, block, status, []
+    path = [int(k) for k in path]
+    budget = propellant_budget(vehicle, [leg.dv_mps for leg in legs], nodes.cost_mps[path],
+                               kit_at_start=mission.injection is None)  # fmt: skip
+    masses = [{"propellant_kg": budget.propellant_kg[k], "mass_before_kg": budget.mass_before_kg[k],
+               "mass_after_kg": budget.mass_after_kg[k]} for k in range(len(legs))]  # fmt: skip
+    notes = []
+    if mission.transfer == "impulsive" and vehicle.thrust_n is not None:
+        # the paper's condition for impulses (Part IV-D): burns short against the coast
+        exhaust = G0 * float(vehicle.isp_s)
+        for k, leg in enumerate(legs):
+            masses[k]["burn_s"] = budget.propellant_kg[k] * exhaust / float(vehicle.thrust_n)
+            if masses[k]["burn_s"] > LONG_BURN * leg.duration_days * SECONDS_PER_DAY:
+                notes.append(
+                    f"leg {leg.from_id} -> {leg.to_id}: its burns last "
+                    f"{masses[k]['burn_s'] / 3600:.1f} h, more than {100 * LONG_BURN:g} % of "
+                    f"its {leg.duration_days:.1f} days: the impulsive model may not hold "
+                    "(transfer = 'low-thrust' models such a vehicle)")  # fmt: skip
+    legs = tuple(replace(leg, masses=masses[k]) for k, leg in enumerate(legs))
+    block |= {"propellant_needed_kg": budget.needed_kg, "operations_propellant_kg":
+              budget.operations_kg, "wet_mass_kg": budget.wet_mass_kg,
+              "capacity_kg": budget.capacity_kg, "margin_kg": budget.margin_kg,
+              "fits": budget.fits}  # fmt: skip
+    if "burn_s" in masses[0]:
+        block["long_burns"] = [k for k, leg in enumerate(legs)
+                               if leg.masses["burn_s"] > LONG_BURN * leg.duration_days
+                               * SECONDS_PER_DAY]  # fmt: skip
+    if not budget.fits:
+        status = RunStatus.OVER_CAPACITY
+        notes.append(
+            f"not flyable with this vehicle: the plan needs {budget.needed_kg:.1f} kg of "
+            f"propellant, the tank holds {budget.capacity_kg:.1f} kg (the least-ΔV plan; a plan "
+            "of more ΔV spent later, on a lighter vehicle, might need less and is not searched)"
+        )
+    return legs, block, status, notes

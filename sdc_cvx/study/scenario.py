@@ -96,7 +96,7 @@ __all__ = [
 _UNSET = {"catalog": "the latest epoch in the catalog", "mission": "none",
           "solver": "no limit / backend default",
           "selection": f"no filter; max_eccentricity {DEFAULT_MAX_ECCENTRICITY:g}",
-          "campaign": "none"}  # fmt: skip
+          "campaign": "none", "vehicle": "unknown"}  # fmt: skip
 """What a key left out of each table means (comments of :meth:`Scenario.to_toml`)."""
 
 
@@ -245,6 +245,8 @@ class Scenario:
                 key: self.campaign.to_dict()[key]
                 for key in ("launch_days", "n", "tmax_days", "must_remove")
             }
+        if "vehicle" in data["mission"]:
+            data["vehicle"] = data["mission"].pop("vehicle")
         return data
 
     def to_toml(self) -> str:
@@ -326,7 +328,7 @@ def _dotted_name(name: str) -> str | None:
     if "." in name:
         table, _, key = name.partition(".")
         return name if table in TABLE_KEYS and key in TABLE_KEYS[table] else None
-    for table in ("mission", "solver", "selection"):
+    for table in ("mission", "solver", "selection", "vehicle"):
         if name in TABLE_KEYS[table]:
             return f"{table}.{name}"
     return None
@@ -335,5 +337,5 @@ def _dotted_name(name: str) -> str | None:
 def _allowed_overrides() -> str:
     return (
         "allowed: catalog_path, catalog_format, catalog_start, a field of Mission, "
-        "SolverOptions or Selection, or a dotted key such as mission.n"
+        "SolverOptions, Selection or Vehicle, or a dotted key such as mission.n"
     )

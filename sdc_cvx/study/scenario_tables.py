@@ -29,6 +29,7 @@ from ..inputs.catalog import Catalog
 from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
 from ..inputs.selection import OBJECT_TYPES, select
+from ..inputs.vehicle import Vehicle
 from ..milp.types import MILP_BACKENDS, SolverOptions
 
 CATALOG_FORMATS = FORMATS
@@ -113,16 +114,18 @@ class _Limit(float):
     """Type of a number that may be ``inf`` (``selection.max_eccentricity``: no limit)."""
 
 
-TABLES = ("catalog", "mission", "solver", "selection", "campaign")
+TABLES = ("catalog", "mission", "solver", "selection", "campaign", "vehicle")
 """The tables a scenario file may have."""
 _CATALOG_KEYS = ("path", "format", "start", "strict")
-_MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission))
+_MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission) if f.name != "vehicle")
+_VEHICLE_KEYS = tuple(f.name for f in dataclasses.fields(Vehicle))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
 _SELECTION_KEYS = tuple(f.name for f in dataclasses.fields(Selection))
 _CAMPAIGN_KEYS = ("launch_days", "missions", "first_launch_day", "period_days", "n", "tmax_days",
                   "must_remove")  # fmt: skip
 TABLE_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS,
-              "selection": _SELECTION_KEYS, "campaign": _CAMPAIGN_KEYS}  # fmt: skip
+              "selection": _SELECTION_KEYS, "campaign": _CAMPAIGN_KEYS,
+              "vehicle": _VEHICLE_KEYS}  # fmt: skip
 """The keys each table may hold."""
 _TYPES = {
     "catalog": {"path": str, "format": str, "start": object, "strict": bool},  # start: _start
@@ -138,6 +141,7 @@ _TYPES = {
         "tmax_days": object,
         "must_remove": tuple[str, ...],
     },  # launch_days, n, tmax_days: _campaign
+    "vehicle": typing.get_type_hints(Vehicle),
 }
 
 
@@ -167,7 +171,8 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
                 hint = f" (did you mean {owner[0]}.{name}?)" if owner else ""
                 problems.append(
                     f"key {name!r} outside a table{hint}; "
-                    f"keys go in [catalog], [mission], [solver], [selection] or [campaign]"
+                    f"keys go in [catalog], [mission], [solver], [selection], [campaign] "
+                    "or [vehicle]"
                 )
         elif not isinstance(table, Mapping):
             problems.append(f"{name} must be a table ([{name}]), got {_kind(table)}")
@@ -176,7 +181,11 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
     catalog = tables.get("catalog", {})
     catalog_path, catalog_format = _catalog(catalog, base, problems)
     start = _start(catalog.get("start"), catalog_path, problems)
-    mission = _make(Mission, "mission", tables.get("mission", {}), problems)
+    mission_values = tables.get("mission", {})
+    if "vehicle" in tables:
+        vehicle = _make(Vehicle, "vehicle", tables["vehicle"], problems)
+        mission_values = mission_values | {"vehicle": vehicle} if vehicle else mission_values
+    mission = _make(Mission, "mission", mission_values, problems)
     solver = _make(SolverOptions, "solver", tables.get("solver", {}), problems)
     selection = _make(Selection, "selection", tables.get("selection", {}), problems)
     strict = catalog.get("strict", False)
@@ -325,7 +334,8 @@ def _relabel(table: str, message: str) -> list[str]:
     """
     keys = TABLE_KEYS[table]
     out = []
-    for problem in message.removeprefix("invalid mission: ").split("; "):
+    message = message.removeprefix("invalid mission: ").removeprefix("invalid vehicle: ")
+    for problem in message.split("; "):
         first = problem.split(" ", 1)[0]
         if first in keys and problem.startswith(f"{first} must"):
             out.append(f"{table}.{problem}")

@@ -22,6 +22,7 @@ def test_statuses_keep_the_strings_of_results_csv():
         "time_limit",
         "stalled",
         "within_gap",
+        "over_capacity",
     )
     assert FAILURE_STATUSES == ("infeasible", "solver_failure", "error")
     assert LOST == "lost" and json.dumps({"status": LOST}) == '{"status": "lost"}'

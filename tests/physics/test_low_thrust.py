@@ -1,0 +1,240 @@
+"""The low-thrust leg (issue 29) against computations written again here from its formulas.
+
+Nothing of the leg's physics is imported to compute a reference: the J2 rate, the
+spirals and the plane change are integrated numerically (scipy) from the averaged
+equations, and the exact costs and bounds are compared with a dense scan of drift radii
+flown by those equations.
+"""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad, solve_ivp
+
+from sdc_cvx.physics.leg_bounds import LegCosts
+from sdc_cvx.physics.low_thrust import (
+    LowThrustModel,
+    edelbaum_transfer,
+    leg_dv,
+    leg_phases,
+    spiral_raan_change,
+)
+from sdc_cvx.physics.transfer import NodeOrbits, hohmann_dv
+
+R = 6378137.0
+MU = 3.986e14
+J2 = 1.08263e-3
+DAY = 86400.0
+
+
+def j2_rate(a, inc):
+    """dOmega/dt [rad/s] of a circular orbit, written again (Eq. 7, e = 0)."""
+    return -1.5 * J2 * np.sqrt(MU) * R**2 * a**-3.5 * np.cos(inc)
+
+
+def speed(a):
+    return np.sqrt(MU / a)
+
+
+def test_spiral_matches_the_issue_figures_and_a_quadrature():
+    """800 -> 700 km at 98.6 deg, f = 1e-4 m/s^2: 6.13139 deg, 52.455 m/s, 6.071 days."""
+    f, inc = 1e-4, np.radians(98.6)
+    a1, a2 = R + 800e3, R + 700e3
+    # tangential thrust on a quasi-circular orbit: da/dt = -2 f a^(3/2) / sqrt(mu) (lowering)
+    seconds, _ = quad(lambda a: 1.0 / (2.0 * f * a**1.5 / np.sqrt(MU)), a2, a1)
+    turned, _ = quad(lambda a: j2_rate(a, inc) / (2.0 * f * a**1.5 / np.sqrt(MU)), a2, a1)
+    assert seconds / DAY == pytest.approx(6.071, abs=5e-4)
+    assert abs(np.degrees(turned)) == pytest.approx(6.13139, abs=5e-5)
+    dv = leg_dv(a1, inc, a2, inc, a2)
+    assert dv == pytest.approx(52.455, abs=5e-4)
+    assert dv / f == pytest.approx(seconds, rel=1e-9)
+    assert spiral_raan_change(a1, a2, inc, f, j2=J2, mu=MU) == pytest.approx(turned, rel=1e-9)
+
+
+def test_edelbaum_general_formula_leo_to_geo():
+    """poliastro's case: 7000 -> 42166 km, 28.5 deg, f = 3.5e-7 km/s^2."""
+    mu = 3.986004418e14
+    dv, seconds = edelbaum_transfer(np.sqrt(mu / 7000e3), np.sqrt(mu / 42166e3),
+                                    np.radians(28.5), 3.5e-4)  # fmt: skip
+    assert dv / 1e3 == pytest.approx(5.7838, abs=1e-4)
+    assert seconds / DAY == pytest.approx(191.26, abs=0.01)
+
+
+def averaged_flight(origin, target, a_d, inc_d, t_depart, f, coast_s):
+    """The leg flown by integrating the averaged equations phase by phase [rad, s]."""
+    (a_i, inc_i, raan_i, rate_i), (a_j, inc_j, _, _) = origin, target
+    omega = raan_i + rate_i * t_depart
+
+    def spiral(a_from, a_to, inc):
+        sign = 1.0 if a_to > a_from else -1.0
+
+        def rhs(_, y):
+            return [sign * 2.0 * f * y[0] ** 1.5 / np.sqrt(MU), j2_rate(y[0], inc)]
+
+        if a_to == a_from:
+            return 0.0, 0.0
+        hit = lambda _, y: y[0] - a_to  # noqa: E731
+        hit.terminal = True
+        sol = solve_ivp(rhs, (0, 1e9), [a_from, 0.0], events=hit, rtol=1e-11, atol=1e-6)
+        return sol.t[-1], sol.y[1, -1]
+
+    def plane_change():
+        if inc_i == inc_j:
+            return 0.0, 0.0
+        rate = np.sign(inc_j - inc_i) * (2.0 / np.pi) * f / speed(a_d)
+        seconds = (inc_j - inc_i) / rate
+        sol = solve_ivp(lambda _, y: [rate, j2_rate(a_d, y[0])], (0, seconds), [inc_i, 0.0],
+                        rtol=1e-11, atol=1e-12)  # fmt: skip
+        return seconds, sol.y[1, -1]
+
+    total_t = 0.0
+    for seconds, turned in (spiral(a_i, a_d, inc_i), plane_change(), spiral(a_d, a_j, inc_j)):
+        total_t += seconds
+        omega += turned
+    omega += j2_rate(a_d, inc_d) * coast_s
+    return omega, total_t + coast_s
+
+
+@pytest.mark.parametrize("inc_d_is_target", [False, True])
+def test_a_whole_leg_closes_the_raan_at_arrival_in_the_averaged_equations(inc_d_is_target):
+    rng = np.random.default_rng(29)
+    f = 1e-4
+    a = R + np.array([700e3, 820e3])
+    inc = np.radians([98.2, 98.9])
+    raan = np.array([0.3, 1.1])
+    orbits = NodeOrbits.from_elements(a, np.zeros(2), inc, raan, j2=J2, mu=MU)
+    origin, target = orbits.take([0]), orbits.take([1])
+    model = LowThrustModel(f)
+    for _ in range(3):
+        a_d = R + rng.uniform(450e3, 1150e3)
+        inc_d = inc[1] if inc_d_is_target else inc[0]
+        t = rng.uniform(0, 100) * DAY
+        total = model.leg_seconds(origin, target, a_d, inc_d, t, j2=J2, mu=MU)[0]
+        thrust = leg_dv(a[0], inc[0], a[1], inc[1], a_d, mu=MU) / f
+        coast = total - thrust
+        assert coast >= 0
+        omega, duration = averaged_flight((a[0], inc[0], raan[0], orbits.rate[0]),
+                                          (a[1], inc[1], raan[1], orbits.rate[1]), a_d, inc_d,
+                                          t, f, coast)  # fmt: skip
+        target_raan = raan[1] + orbits.rate[1] * (t + duration)
+        assert duration == pytest.approx(total, rel=1e-7)
+        miss = np.angle(np.exp(1j * (omega - target_raan)))
+        assert abs(miss) < 1e-6
+
+
+def test_a_coplanar_leg_tends_to_the_impulsive_leg_to_first_order():
+    """Spirals cost |V_i - V_d| + |V_d - V_j|; Hohmann the same to first order in da/a."""
+    a_i, a_j = R + 700e3, R + 720e3
+    for a_d in (R + 690e3, R + 710e3, R + 740e3):
+        low = leg_dv(a_i, 1.7, a_j, 1.7, a_d)
+        impulsive = hohmann_dv(a_i, a_d) + hohmann_dv(a_d, a_j)
+        assert low == pytest.approx(impulsive, rel=2e-3)
+
+
+def test_the_plane_change_costs_pi_over_two_more_than_an_impulse():
+    a, di = R + 800e3, np.radians(0.5)
+    phases = leg_phases(a, 1.70, a, 1.70 + di, a, 1e-4)
+    assert phases.dv_plane == pytest.approx(0.5 * np.pi * hohmann_dv(a, a, di), rel=1e-4)
+
+
+@pytest.fixture(scope="module")
+def table():
+    rng = np.random.default_rng(7)
+    n = 6
+    a = R + rng.uniform(600e3, 1000e3, n)
+    inc = np.radians(rng.uniform(96.0, 100.0, n))
+    orbits = NodeOrbits.from_elements(a, np.zeros(n), inc, rng.uniform(0, 2 * np.pi, n), j2=J2,
+                                      mu=MU)  # fmt: skip
+    i, j = np.nonzero(~np.eye(n, dtype=bool))
+    legs = LegCosts.build(orbits.take(i), orbits.take(j), R + 400e3, R + 1200e3, mu=MU,
+                          model=LowThrustModel(1e-4))  # fmt: skip
+    return orbits, i, j, legs
+
+
+def scan(orbits, i, j, t, rule, laps=3, points=40001):
+    """Arrival dates and costs of every drift radius of a dense grid leaving at t [days],
+    flown with the formulas of this file (coast closed by J2, then whole laps)."""
+    f = 1e-4
+    a_d = np.linspace(R + 400e3, R + 1200e3, points)
+    out = []
+    for inc_d in (orbits.inc[i], orbits.inc[j]):
+        dv = (np.abs(speed(orbits.a[i]) - speed(a_d)) + np.abs(speed(a_d) - speed(orbits.a[j]))
+              + 0.5 * np.pi * speed(a_d) * abs(orbits.inc[j] - orbits.inc[i]))  # fmt: skip
+        thrust = dv / f
+        turned = 0.0
+        for a_from, a_to, inc in ((orbits.a[i], a_d, orbits.inc[i]),
+                                  (a_d, orbits.a[j], orbits.inc[j])):  # fmt: skip
+            turned = turned - 3 * J2 * R**2 * np.cos(inc) / (16 * MU**3 * f) * np.abs(
+                speed(a_to) ** 8 - speed(a_from) ** 8)  # fmt: skip
+        d_inc = orbits.inc[j] - orbits.inc[i]
+        mean_cos = (np.sin(orbits.inc[j]) - np.sin(orbits.inc[i])) / d_inc if d_inc else 1.0
+        turned = turned + j2_rate(a_d, 0.0) * (0.5 * np.pi * speed(a_d) * abs(d_inc) / f) * mean_cos
+        rel = j2_rate(a_d, inc_d) - orbits.rate[j]
+        gap = (orbits.raan[j] + orbits.rate[j] * (t * DAY + thrust)
+               - orbits.raan[i] - orbits.rate[i] * t * DAY - turned)  # fmt: skip
+        coast = np.mod(np.where(rel > 0, gap, -gap), 2 * np.pi) / np.abs(rel)
+        big, small = max(orbits.inc[i], orbits.inc[j]), min(orbits.inc[i], orbits.inc[j])
+        allowed = np.ones_like(a_d, dtype=bool) if rule == "free" or big == small else (
+            (inc_d == big) & (rel >= 0) | (inc_d == small) & (rel <= 0))  # fmt: skip
+        for k in range(laps):
+            arrive = t + (thrust + coast + k * 2 * np.pi / np.abs(rel)) / DAY
+            out.append((arrive[allowed], dv[allowed]))
+    return np.concatenate([o[0] for o in out]), np.concatenate([o[1] for o in out])
+
+
+@pytest.mark.parametrize("rule", ["table3", "free"])
+def test_exact_cost_and_box_bound_against_a_dense_scan(table, rule):
+    orbits, i, j, legs = table
+    rng = np.random.default_rng(11)
+    checked = 0
+    for e in rng.permutation(len(i)):
+        t = rng.uniform(0, 120)
+        arrive, dv = scan(orbits, i[e], j[e], t, rule)
+        within = arrive[(arrive > t) & (arrive < t + 300)]
+        if checked >= 24 or len(within) < 3:
+            continue
+        for target in rng.choice(within, 3, replace=False):
+            exact = legs.cost_at(e, t, target, rule=rule, j2=J2)
+            near = np.abs(arrive - target) < 0.005
+            # the exact cheapest leg between the two dates is never dearer than a scanned
+            # leg arriving on that date (to the scan's date resolution), and no cheaper than
+            # the bound of a small box around it
+            assert exact.cost <= dv[np.abs(arrive - target) < 1e-9].min() + 1e-6
+            box = legs.box_bound(e, t, t, target - 0.005, target + 0.005, rule=rule, j2=J2)
+            assert box <= dv[near].min() + 1e-9
+            assert box <= exact.cost + 1e-9
+            assert exact.cost - box < 0.05 * (exact.cost - legs.floor(e)) + 1.0
+            checked += 1
+    assert checked == 24
+
+
+def test_box_bounds_are_never_above_a_leg_of_the_box_and_tighten_as_it_shrinks(table):
+    orbits, i, j, legs = table
+    rng = np.random.default_rng(5)
+    for e in rng.choice(len(i), 6, replace=False):
+        t1 = rng.uniform(0, 100)
+        arrive, dv = scan(orbits, i[e], j[e], t1, "table3", points=20001)
+        ok = (arrive > t1 + 20) & (arrive < t1 + 250)
+        if not ok.any():
+            continue
+        k = np.flatnonzero(ok)[np.argmin(dv[ok])]
+        previous = -np.inf
+        for width in (40.0, 10.0, 2.0, 0.2, 0.01):
+            t3 = arrive[k] - width * rng.uniform(0.1, 0.9)
+            bound = legs.box_bound(e, t1, t1, t3, t3 + width, rule="table3", j2=J2)
+            inside = (arrive >= t3) & (arrive <= t3 + width)
+            assert bound <= dv[inside].min() + 1e-9
+            assert bound >= previous - 1e-6  # a box inside the last one: no looser
+            previous = bound
+        assert dv[k] - previous < 0.05
+
+
+def test_spirals_longer_than_the_box_prove_no_leg(table):
+    """At low acceleration the thrust alone outlasts a short box: the bound is inf."""
+    orbits, i, j, _ = table
+    slow = LegCosts.build(orbits.take(i), orbits.take(j), R + 400e3, R + 1200e3, mu=MU,
+                          model=LowThrustModel(1e-6))  # fmt: skip
+    e = int(np.argmax(np.abs(orbits.a[i] - orbits.a[j])))
+    shortest_days = (legs_floor := slow.floor(e)) / 1e-6 / DAY
+    assert legs_floor > 0
+    assert np.isinf(slow.box_bound(e, 0.0, 0.0, 0.0, 0.9 * shortest_days, rule="free", j2=J2))
+    assert np.isinf(slow.cost_at(e, 0.0, 0.9 * shortest_days, rule="free", j2=J2).cost)
