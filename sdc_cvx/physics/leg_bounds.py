@@ -183,9 +183,15 @@ class LegCosts:
         """Exact cheapest leg of edges ``e`` between dates [days], in this table's model."""
         return self.model.cost_at(self, e, t, t_arrive, rule=rule, j2=j2, t_min=t_min)
 
-    def box_bound(self, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0):
-        """Lower bound [m/s] of edges ``e`` over boxes of dates [days], in this table's model."""
-        return self.model.box_bound(self, e, t1, t2, t3, t4, rule=rule, j2=j2, t_min=t_min)
+    def box_bound(self, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0,
+                  cap=np.inf):  # fmt: skip
+        """Lower bound [m/s] of edges ``e`` over boxes of dates [days], in this table's model.
+
+        A model may stop refining a box's bound once it reaches ``cap`` [m/s] (the value
+        returned is then at least ``cap``, and still a valid bound).
+        """
+        return self.model.box_bound(self, e, t1, t2, t3, t4, rule=rule, j2=j2, t_min=t_min,
+                                    cap=cap)  # fmt: skip
 
     def special_dates(self, e: int, start: float, stop: float) -> np.ndarray:
         """Dates in [start, stop] [days] a schedule of edge ``e`` may need exactly."""
@@ -466,7 +472,11 @@ class ImpulsiveModel:
         return {"coast_days": np.asarray(duration_days, dtype=float)}
 
     cost_at = staticmethod(leg_cost_at)
-    box_bound = staticmethod(leg_box_bound)
+
+    def box_bound(self, legs, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0,
+                  cap=np.inf):  # fmt: skip
+        """:func:`leg_box_bound` (exact in closed form: ``cap`` saves nothing here)."""
+        return leg_box_bound(legs, e, t1, t2, t3, t4, rule=rule, j2=j2, t_min=t_min)
     special_dates = staticmethod(crossing_dates)
     cheapest_transfer = staticmethod(cheapest_transfer)
 

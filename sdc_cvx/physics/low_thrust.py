@@ -354,10 +354,11 @@ class LowThrustModel:
         return low_thrust_bounds.cost_at(legs, e, t, t_arrive, accel=self.accel_mps2,
                                          rule=rule, j2=j2, t_min=t_min)  # fmt: skip
 
-    def box_bound(self, legs, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0):
+    def box_bound(self, legs, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0,
+                  cap=np.inf):  # fmt: skip
         """:func:`~sdc_cvx.physics.low_thrust_bounds.box_bound` at this acceleration."""
         return low_thrust_bounds.box_bound(legs, e, t1, t2, t3, t4, accel=self.accel_mps2,
-                                           rule=rule, j2=j2, t_min=t_min)  # fmt: skip
+                                           rule=rule, j2=j2, t_min=t_min, cap=cap)  # fmt: skip
 
     def special_dates(self, legs, e, start, stop):
         """None: thrust takes time, so no leg needs one exact date (only two debris on one

@@ -68,6 +68,8 @@ ROOT_ITERATIONS = 40
 """Safeguarded Newton steps for a root of phi on a monotone sub-piece."""
 SEARCH_ITERATIONS = 64
 """Steps of a bound's frontier search at most (it stops earlier once resolved)."""
+BOX_CHUNK = 8192
+"""Boxes bounded at once (the search's temporaries are about 16 of its arrays per box)."""
 SPEED_TOL = 1e-3
 """Step of speed [m/s] below which a bound's frontier search stops: the bound is then
 within about ``4 * 2.1 * SPEED_TOL`` of the best the enclosure proves (the cost's slope
@@ -309,7 +311,7 @@ def _solve(p: _Pieces, t, duration, a, b, target, f_a, f_b):
 
 
 def box_bound(legs, e, t1, t2, t3, t4, *, accel: float, rule: str, j2: float,
-              t_min: float = 0.0):  # fmt: skip
+              t_min: float = 0.0, cap=np.inf):  # fmt: skip
     """Lower bound [m/s] of low-thrust legs ``e`` over departures in [t1, t2], arrivals in [t3, t4].
 
     Only (t, t') with ``t' - t >= t_min`` count.  ``inf`` where no leg of the box is
@@ -326,16 +328,27 @@ def box_bound(legs, e, t1, t2, t3, t4, *, accel: float, rule: str, j2: float,
         Thrust acceleration [m/s^2].
     rule : {"table3", "free"}
     j2, t_min : float
+    cap : float or array_like
+        A box's search stops once its bound reaches ``cap`` [m/s] (a caller that prunes
+        above it needs no more): the bound returned is then at least ``cap``, still valid.
 
     Returns
     -------
     ndarray
     """
     dates = (np.asarray(v, float) for v in (t1, t2, t3, t4))
-    e, t1, t2, t3, t4 = np.broadcast_arrays(np.asarray(e), *dates)
+    e, t1, t2, t3, t4, cap = np.broadcast_arrays(np.asarray(e), *dates, np.asarray(cap, float))
+    out = np.empty(e.shape)
+    flat = [np.ravel(v) for v in (e, t1, t2, t3, t4, cap)]
+    for start in range(0, e.size, BOX_CHUNK):  # in chunks: the search's temporaries stay small
+        part = slice(start, start + BOX_CHUNK)
+        out.ravel()[part] = _box_bound(legs, *(v[part] for v in flat), accel, rule, j2, t_min)
+    return out
+
+
+def _box_bound(legs, e, t1, t2, t3, t4, cap, accel, rule, j2, t_min):
+    """:func:`box_bound` of a 1-D chunk of boxes."""
     shape = e.shape
-    if e.size == 0:
-        return np.full(shape, np.inf)
     p = _pieces(legs, e, accel, rule, j2, shape)
     box = tuple(np.broadcast_to(v, p.lo.shape).ravel() for v in (t1, t2, t3, t4))
     up = p.c1 >= 0
@@ -343,7 +356,7 @@ def box_bound(legs, e, t1, t2, t3, t4, *, accel: float, rule: str, j2: float,
     flat = p.take(slice(None))
     n_box = int(np.prod(shape))
     bound = np.full(w0.shape, np.inf)
-    best = np.full(n_box, np.inf)  # per box, the least bound of its settled pieces
+    best = cap.copy()  # per box, the least bound of its settled pieces (or the cap)
 
     def settle(index, value):
         bound[index] = value

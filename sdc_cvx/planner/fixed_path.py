@@ -177,7 +177,10 @@ class _BoundCache:
         self.rows = self.cols = np.empty(0, dtype=int)
         self.matrix = np.empty((0, 0))
 
-    def update(self, problem: PathProblem, k: int, cells_from: _Cells, cells_to: _Cells):
+    def update(self, problem: PathProblem, k: int, cells_from: _Cells, cells_to: _Cells,
+               cap: float = np.inf):  # fmt: skip
+        """The bounds between the cells of positions k and k + 1; a new box's bound may
+        stop at ``cap`` (a box above it cannot be on a schedule the search still wants)."""
         r_map = _positions(self.rows, cells_from.ids)
         c_map = _positions(self.cols, cells_to.ids)
         out = np.full((len(cells_from), len(cells_to)), np.nan)
@@ -191,7 +194,7 @@ class _BoundCache:
             out[rr, cc] = problem.legs.box_bound(
                 problem.edges[k], cells_from.lo[rr], cells_from.hi[rr],
                 cells_to.lo[cc] - ops, cells_to.hi[cc] - ops, rule=problem.rule,
-                j2=problem.j2, t_min=problem.tmin_days)  # fmt: skip
+                j2=problem.j2, t_min=problem.tmin_days, cap=cap)  # fmt: skip
         self.rows, self.cols, self.matrix = cells_from.ids.copy(), cells_to.ids.copy(), out
         return out
 
@@ -240,8 +243,14 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
     lower = -np.inf
     rounds = 0
     special = _special_dates(problem, earliest)
+    floors = problem.legs.floor(np.asarray(problem.edges))
     for rounds in range(1, max_rounds + 1):  # noqa: B007 - reported after the loop
-        bounds = [caches[k].update(problem, k, cells[k], cells[k + 1]) for k in range(L)]
+        # a box of leg k above ``limit - (the other legs' floors)`` is on no schedule under
+        # the limit: its bound need not be refined past that
+        caps = np.nan_to_num(min(best_upper, cutoff_mps) - (floors.sum() - floors) + 1e-6,
+                             nan=np.inf)
+        bounds = [caches[k].update(problem, k, cells[k], cells[k + 1], caps[k])
+                  for k in range(L)]  # fmt: skip
         backward = [None] * (L + 1)
         backward[L] = np.zeros(len(cells[L]))
         choice = [None] * L
