@@ -14,7 +14,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..inputs.catalog import Catalog
-from ..physics.orbits import SECONDS_PER_DAY
+from ..physics.low_thrust import plane_change_raan_change, spiral_raan_change
+from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
 from ..physics.transfer import NodeOrbits, drift_rate
 from .plot_common import (
     _DEBRIS_COLOR,
@@ -53,22 +54,65 @@ def vehicle_altitude(solution: Solution, catalog: Catalog) -> tuple[np.ndarray, 
     days, altitude_km : ndarray
         Mission time [days after t0] and altitude [km]: the debris altitude while at a
         debris, the drift altitude while drifting, vertical steps at the (instantaneous)
-        Hohmann transfers.
+        Hohmann transfers, or the spirals of a low-thrust leg (under tangential thrust the
+        circular speed changes linearly in time).
     """
     index = _positions(solution, catalog)
     altitude = _altitudes_km(catalog)
     first = solution.legs[0].from_id if solution.legs else solution.path[0]
     days, alts = [0.0], [altitude[index[first]]]
-    for leg in solution.legs:
+    for leg in solution.legs:  # a low-thrust leg's spirals: the speed linear in time
         arrival = leg.departure_day + leg.duration_days
-        days += [leg.departure_day, leg.departure_day, arrival, arrival]
-        alts += [altitude[index[leg.from_id]], leg.drift_alt_km, leg.drift_alt_km]
-        alts += [altitude[index[leg.to_id]]]
+        start_alt, end_alt = altitude[index[leg.from_id]], altitude[index[leg.to_id]]
+        out = leg.phases.get("spiral_out_days", 0.0)
+        back = leg.phases.get("spiral_in_days", 0.0)
+        ramp_out, alt_out = _spiral(leg.departure_day, out, start_alt, leg.drift_alt_km)
+        ramp_in, alt_in = _spiral(arrival - back, back, leg.drift_alt_km, end_alt)
+        days += [leg.departure_day, *ramp_out, *ramp_in, arrival]
+        alts += [start_alt, *alt_out, *alt_in, end_alt]
     end = _end_day(solution)
     if end > days[-1]:
         days.append(end)
         alts.append(alts[-1])
     return np.asarray(days), np.asarray(alts)
+
+
+def _spiral(start, length, alt_from, alt_to, points=12):
+    """Times [days] and altitudes [km] of a spiral from ``alt_from`` to ``alt_to`` lasting
+    ``length`` days (a step when it takes no time): the speed is linear in time."""
+    if length <= 0:
+        return [start, start], [alt_from, alt_to]
+    v_from, v_to = 1.0 / np.sqrt(R_EARTH / 1e3 + alt_from), 1.0 / np.sqrt(R_EARTH / 1e3 + alt_to)
+    v = np.linspace(v_from, v_to, points)
+    return list(start + np.linspace(0.0, length, points)), list(1.0 / v**2 - R_EARTH / 1e3)
+
+
+def _vehicle_raan_turned(solution: Solution, leg, orbits: NodeOrbits, origin: int, target: int,
+                         elapsed, rate_drift):  # fmt: skip
+    """RAAN [deg] the vehicle has turned ``elapsed`` days into ``leg``: the drift rate times
+    the time for an impulsive leg; for a low-thrust leg, each phase's own turn (spirals,
+    plane change, coast; linear in time within a phase, exact at its ends)."""
+    if "spiral_out_days" not in leg.phases:
+        return rate_drift * elapsed
+    accel = solution.mission.transfer_model().describe()["accel_mps2"]
+    a_d = leg.drift_a_km * 1e3
+    j2 = solution.mission.j2
+    a, inc = orbits.a, orbits.inc
+    spiral_out = spiral_raan_change(a[origin], a_d, inc[origin], accel, j2=j2)
+    plane = plane_change_raan_change(a_d, inc[origin], inc[target], accel, j2=j2)
+    spiral_in = spiral_raan_change(a_d, a[target], inc[target], accel, j2=j2)
+    p = leg.phases
+    coast = np.radians(rate_drift) * p["coast_days"]
+    # the plane change is flown after spiral A when the coast has the target's inclination
+    after_spiral = np.isclose(np.radians(leg.drift_inc_deg), inc[target]) and inc[origin] != inc[
+        target]  # fmt: skip
+    phases = [(p["spiral_out_days"], spiral_out)]
+    middle = [(p["plane_change_days"], plane), (p["coast_days"], coast)]
+    phases += middle if after_spiral else middle[::-1]
+    phases.append((p["spiral_in_days"], spiral_in))
+    ends = np.cumsum([0.0] + [length for length, _ in phases])
+    turned = np.cumsum([0.0] + [np.degrees(value) for _, value in phases])
+    return np.interp(elapsed, ends, turned)
 
 
 def raan_gap_history(
@@ -109,7 +153,8 @@ def raan_gap_history(
         )
         days = leg.departure_day + np.linspace(0.0, leg.duration_days, samples)
         vehicle = raan0[origin] + rate[origin] * leg.departure_day
-        vehicle = vehicle + rate_drift * (days - leg.departure_day)
+        vehicle = vehicle + _vehicle_raan_turned(solution, leg, orbits, origin, target,
+                                                 days - leg.departure_day, rate_drift)  # fmt: skip
         gap = _wrap_deg(vehicle - (raan0[target] + rate[target] * days))
         history.append((days, gap))
     return history
@@ -123,7 +168,8 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
     debris and at the drift altitude while it drifts, with vertical steps at the
     Hohmann transfers; each drift orbit is over-drawn in its leg's colour (gid
     ``"drift-k"``, k from 1) and annotated with the leg (``5→8``), its altitude and its
-    inclination.  The altitude of each selected debris is a dashed reference line
+    inclination.  A low-thrust leg's spirals are the slopes between the debris and the
+    drift orbit.  The altitude of each selected debris is a dashed reference line
     labelled at the right, and the duration limit T_max a dotted vertical line.
 
     Parameters
@@ -167,8 +213,9 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
         crowded = last_label is not None and abs(middle - last_label) < 0.08 * end
         last_label = None if crowded else middle
         ax.axvspan(start, stop, color=color, alpha=0.08, linewidth=0, zorder=0)
-        ax.plot(
-            [start, stop],
+        ax.plot(  # on the drift orbit: between a low-thrust leg's spirals
+            [start + leg.phases.get("spiral_out_days", 0.0),
+             stop - leg.phases.get("spiral_in_days", 0.0)],
             [leg.drift_alt_km] * 2,
             color=color,
             linewidth=3.5,
