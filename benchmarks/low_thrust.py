@@ -47,14 +47,19 @@ def load(case: str):
 
 
 def run_case(case, accel, time_limit, queue):
-    from sdc_cvx import Mission, SolverOptions, solve
+    from sdc_cvx import Mission, MissionInfeasible, SolverOptions, solve
 
     catalog = load(case)
     transfer = {} if accel is None else dict(transfer="low-thrust",
                                              vehicle={"accel_mps2": accel})  # fmt: skip
     start = time.perf_counter()
-    solution = solve(catalog, Mission(n=5, tmax_days=365.25, **transfer),
-                     solver=SolverOptions(time_limit_s=time_limit))  # fmt: skip
+    try:
+        solution = solve(catalog, Mission(n=5, tmax_days=365.25, **transfer),
+                         solver=SolverOptions(time_limit_s=time_limit))  # fmt: skip
+    except MissionInfeasible:  # proven: no plan (the spirals alone outlast T_max)
+        queue.put(dict(N=len(catalog), seconds=time.perf_counter() - start, peak_mb=peak_mb(),
+                       status="infeasible"))  # fmt: skip
+        return
     queue.put(dict(N=len(catalog), seconds=time.perf_counter() - start, peak_mb=peak_mb(),
                    answer=solution.total_dv_mps, lower=solution.lower_bound_mps,
                    gap_pct=100 * solution.gap_rel, status=str(solution.status),
@@ -100,12 +105,17 @@ def main(argv=None):
         base = None
         for accel in [None, *args.accel]:
             row = measure(case, accel, args.time_limit, args.repeat)
-            if "answer" not in row:
-                print(f"{case:<8} {'-':>3} {str(accel):<18} {row['status']}")
+            model = "impulsive" if accel is None else f"low-thrust {accel:g}"
+            if "seconds" not in row:
+                print(f"{case:<8} {'-':>3} {model:<18} {row['status']}")
                 continue
             base = row["seconds"] if accel is None else base
-            model = "impulsive" if accel is None else f"low-thrust {accel:g}"
             ratio = row["seconds"] / base if base else float("nan")
+            if "answer" not in row:  # proven infeasible
+                print(f"{case:<8} {row['N']:>3} {model:<18} {'-':>8} {'-':>8} {'-':>6} "
+                      f"{row['seconds']:>6.1f} {ratio:>6.2f} {row['peak_mb']:>5.0f} "
+                      f"{row['status']:<8}", flush=True)  # fmt: skip
+                continue
             print(f"{case:<8} {row['N']:>3} {model:<18} {row['answer']:>8.2f} "
                   f"{row['lower']:>8.2f} {row['gap_pct']:>6.3f} {row['seconds']:>6.1f} "
                   f"{ratio:>6.2f} {row['peak_mb']:>5.0f} {row['status']:<8} {row['path']}",

@@ -181,6 +181,8 @@ def _infeasible_message(mission: Mission) -> str:
     if mission.tmax_days < MAX_TMAX_DAYS:
         relax.append("a longer mission (tmax_days)")
     relax += [f"a wider drift altitude band {mission.drift_altitude_km}", "fewer debris (n)"]
+    if mission.transfer != "impulsive":
+        relax.append("more thrust (vehicle accel_mps2 or thrust_n: the spirals take time)")
     if mission.deorbit_days > 0:
         relax.append("shorter operations (deorbit_days)")
     return (
