@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import ClassVar, NamedTuple
+from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
 import numpy as np
 
@@ -48,6 +48,9 @@ from .transfer import (
     transfer_duration,
     transfer_dv,
 )
+
+if TYPE_CHECKING:  # the models module imports this one
+    from .models import TransferModel
 
 TWO_PI = 2.0 * np.pi
 GRID_POINTS = 513
@@ -109,7 +112,7 @@ class LegCosts:
     candidates: np.ndarray
     candidate_cost: np.ndarray
     mu: float = MU_EARTH
-    model: ImpulsiveModel = field(default_factory=lambda: IMPULSIVE)
+    model: TransferModel = field(default_factory=lambda: IMPULSIVE)
 
     @classmethod
     def build(cls, origin: NodeOrbits, target: NodeOrbits, a_low: float, a_high: float, *,
@@ -477,6 +480,7 @@ class ImpulsiveModel:
                   cap=np.inf):  # fmt: skip
         """:func:`leg_box_bound` (exact in closed form: ``cap`` saves nothing here)."""
         return leg_box_bound(legs, e, t1, t2, t3, t4, rule=rule, j2=j2, t_min=t_min)
+
     special_dates = staticmethod(crossing_dates)
     cheapest_transfer = staticmethod(cheapest_transfer)
 

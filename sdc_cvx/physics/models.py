@@ -9,9 +9,10 @@ two debris (the pvlib ``ModelChain`` shape: one signature, swappable models):
 - ``cost_at(legs, e, t, t_arrive, *, rule, j2, t_min)``: the exact cheapest leg
   between two dates [days] (:class:`~sdc_cvx.physics.leg_bounds.LegAtDates`; the
   certified search's plans);
-- ``box_bound(legs, e, t1, t2, t3, t4, *, rule, j2, t_min)``: a lower bound of the cost
-  over a box of dates, never above the cost of a leg in the box and exact in the limit
-  (the certified search's bounds; each model's proof is in ``docs/design.md``);
+- ``box_bound(legs, e, t1, t2, t3, t4, *, rule, j2, t_min, cap)``: a lower bound of the
+  cost over a box of dates, never above the cost of a leg in the box and exact in the
+  limit (the certified search's bounds; each model's proof is in ``docs/design.md``); it
+  may stop refining a box once its bound reaches ``cap``;
 - ``special_dates(legs, e, start, stop)``: dates a schedule may need exactly;
 - ``cheapest_transfer(...)``: the pre-optimised leg of Part IV-B (edge table, paper's
   method);
@@ -54,7 +55,7 @@ class TransferModel(Protocol):
 
     def cost_at(self, legs, e, t, t_arrive, *, rule, j2, t_min=0.0) -> LegAtDates: ...
 
-    def box_bound(self, legs, e, t1, t2, t3, t4, *, rule, j2, t_min=0.0): ...
+    def box_bound(self, legs, e, t1, t2, t3, t4, *, rule, j2, t_min=0.0, cap=...): ...
 
     def special_dates(self, legs, e, start, stop): ...
 

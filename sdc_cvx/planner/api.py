@@ -295,7 +295,7 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
         catalog=nodes.catalog,
         model_size=dict(model_size or {}),
         timings=dict(timings or {}),
-        notes=tuple(plan_notes) + tuple(notes) + tuple(vehicle_notes),  # the search's, then
+        notes=(*plan_notes, *notes, *vehicle_notes),  # the plan's, the search's, the vehicle's
         method="certified",
         lower_bound_mps=lower,
         gap_requested=gap_requested,

@@ -46,7 +46,7 @@ from ...milp.types import SolveReport, SolverOptions, Status
 from ...network.dominance import path_cost_floor, transfer_dv_floor
 from ...network.edges import drift_radius_bounds, node_orbits, preoptimize, preoptimize_windows
 from ...solution import IterationRecord, RunStatus, Solution
-from ..nodes import MissionNodes, make_legs
+from ..nodes import MissionNodes, make_legs, with_vehicle
 from .decisions import Action, Outcome, Phase, decide
 from .incumbents import Incumbents, IncumbentSteps
 from .linearize import EdgeGeometry, TrustRegion, linearize
@@ -409,7 +409,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     plan, drift = driver.global_schedule(path, final)
     driver.log.timings["total_s"] = time.perf_counter() - wall
     ids = catalog.ids
-    legs_out = make_legs(ids, path, *drift, plan)
+    legs_out, vehicle, status, vehicle_notes = with_vehicle(make_legs(ids, path, *drift, plan),
+                                                            nodes, path, mission, status)
     size = driver.model.size()
     return Solution(
         path=tuple(ids[k] for k in path),
@@ -435,7 +436,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
             "paper_unfiltered": vars(ModelSize.paper(len(catalog))),
         },
         timings=driver.log.timings,
-        notes=tuple(driver.log.notes),
+        notes=(*driver.log.notes, *vehicle_notes),
+        vehicle=vehicle,
     )
 
 
