@@ -382,7 +382,7 @@ def _box_bound(legs, e, t1, t2, t3, t4, cap, accel, rule, j2, t_min):
     # a multiple of 2 pi (Newton's step); it moves only if the interval proof holds, and
     # tries a quarter of that after a miss
     pos = w0[live].copy()
-    frac = np.full(len(live), 0.9)
+    frac = np.full(len(live), 0.97)
     for _ in range(SEARCH_ITERATIONS):
         if not len(live):
             break
@@ -392,7 +392,7 @@ def _box_bound(legs, e, t1, t2, t3, t4, cap, accel, rule, j2, t_min):
         nxt = np.where(proposal >= np.abs(stop - pos), stop, pos + ahead * proposal)
         proven = _empty(sub, *dates, pos, nxt, t_min)
         pos = np.where(proven, nxt, pos)
-        frac = np.where(proven, 0.9, 0.25 * frac)
+        frac = np.where(proven, 0.97, 0.25 * frac)
         # every sub-interval up to the far end proven empty: no leg on this piece
         through = proven & (nxt == stop)
         done = through | (~proven & (proposal <= SPEED_TOL))
@@ -446,21 +446,38 @@ def _first_reach(p: _Pieces, dates, pos, ahead, t_min):
     """Distance [m/s] from ``pos`` (towards ``ahead``) at which the enclosure of phi over
     ``[pos, pos + distance]`` would first touch a multiple of 2 pi if its parts kept their
     rates at ``pos`` (``inf``: never).  Each part widens the enclosure on its own (the
-    interval proof does not see that they may cancel), so their rates add."""
-    n = len(pos)
-    both = p.take(np.r_[np.arange(n), np.arange(n)])
-    at = np.r_[pos, pos + ahead * SPEED_TOL]
-    parts = _phi_parts(both, *(np.r_[v, v] for v in dates), at, at, t_min)
-    beta, linear_lo, linear_hi = parts[0], parts[2], parts[3]
+    interval proof does not see that they may cancel), so their rates add; the rates are
+    the parts' derivatives in w at ``pos`` (for the linear part, that of its extreme
+    vertex, which moves with the thrust time where the cut D >= t_thrust binds)."""
+    t1, t2, t3, t4 = dates
+    w = pos
+    w6 = w**6
+    tau = p.thrust_days(w)
+    d_min = np.maximum(max(t_min, 0.0), tau)
+    d_slope = np.where(tau > t_min, p.c1 / p.f_day, 0.0)  # d(d_min)/dw
+    zero = np.zeros_like(w)
+    t = np.stack([t1, t1, t2, t2, t1, t2, t3 - d_min, t4 - d_min])
+    d = np.stack([t3 - t1, t4 - t1, t3 - t2, t4 - t2, d_min, d_min, d_min, d_min])
+    t_slope = np.stack([zero, zero, zero, zero, zero, zero, -d_slope, -d_slope])
+    d_slopes = np.stack([zero, zero, zero, zero, d_slope, d_slope, d_slope, d_slope])
+    tol = 1e-12 * np.maximum(1.0, np.abs(t) + np.abs(d))
+    vertex = ((t >= t1 - tol) & (t <= t2 + tol) & (t + d >= t3 - tol) & (t + d <= t4 + tol)
+              & (d >= d_min - tol))  # fmt: skip
+    rel, rel_slope = p.rel(w), 7.0 * p.q * w6
+    value = rel * d - p.g * t
+    slope = rel_slope * d + rel * d_slopes - p.g * t_slope
+    rows = np.arange(len(w))
+    low_k = np.argmin(np.where(vertex, value, np.inf), axis=0)
+    high_k = np.argmax(np.where(vertex, value, -np.inf), axis=0)
+    beta = p.beta(w) - p.gap0
+    beta_slope = ahead * w6 * (8.0 * p.alpha * w + 7.0 * p.gamma0)
+    lo, hi = beta + value[low_k, rows], beta + value[high_k, rows]
     with np.errstate(invalid="ignore", divide="ignore"):
-        d_beta = (beta[n:] - beta[:n]) / SPEED_TOL
-        rising = np.maximum(d_beta, 0) + np.maximum((linear_hi[n:] - linear_hi[:n]) / SPEED_TOL, 0)
-        falling = np.maximum(-d_beta, 0) + np.maximum((linear_lo[:n] - linear_lo[n:]) / SPEED_TOL,
-                                                      0)  # fmt: skip
-        lo, hi = beta[:n] + linear_lo[:n], beta[:n] + linear_hi[:n]
+        rising = np.maximum(beta_slope, 0) + np.maximum(ahead * slope[high_k, rows], 0)
+        falling = np.maximum(-beta_slope, 0) + np.maximum(-ahead * slope[low_k, rows], 0)
         below = lo - TWO_PI * np.floor(lo / TWO_PI)
         above = TWO_PI * np.ceil(hi / TWO_PI) - hi
         reach = np.minimum(np.where(falling > 0, below / falling, np.inf),
                            np.where(rising > 0, above / rising, np.inf))  # fmt: skip
-    return np.where(np.isnan(reach), np.inf, reach)
-
+    no_polygon = ~vertex.any(axis=0)
+    return np.where(np.isnan(reach) | no_polygon, np.inf, reach)
