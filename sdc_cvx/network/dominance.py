@@ -32,14 +32,16 @@ import heapq
 
 import numpy as np
 
+from ..physics.leg_bounds import IMPULSIVE
 from ..physics.orbits import MU_EARTH
-from ..physics.transfer import NodeOrbits, minimize_on_interval, transfer_dv
+from ..physics.transfer import NodeOrbits, minimize_on_interval
 
 FLOOR_MARGIN_MPS = 0.01
 """Subtracted from each transfer floor [m/s]: covers the 1-D search's tolerance."""
 
 
-def transfer_dv_floor(origin: NodeOrbits, target: NodeOrbits, a_low, a_high, *, mu=MU_EARTH):
+def transfer_dv_floor(origin: NodeOrbits, target: NodeOrbits, a_low, a_high, *, mu=MU_EARTH,
+                      model=IMPULSIVE):  # fmt: skip
     """Lower bound on the cost of any drift transfer from ``origin`` to ``target`` [m/s].
 
     ``min over a_d in [a_low, a_high], I_d in {I_i, I_j} of DV(a_d, I_d)`` (Eq. 11-13)
@@ -66,8 +68,8 @@ def transfer_dv_floor(origin: NodeOrbits, target: NodeOrbits, a_low, a_high, *, 
     for inc_drift in (origin.inc, target.inc):
 
         def cost(a, inc_drift=inc_drift):
-            return transfer_dv(origin.a[:, None], origin.inc[:, None], target.a[:, None],
-                               target.inc[:, None], a, inc_drift[:, None], mu=mu)  # fmt: skip
+            return model.leg_dv(origin.a[:, None], origin.inc[:, None], target.a[:, None],
+                                target.inc[:, None], a, inc_drift[:, None], mu=mu)  # fmt: skip
 
         best = np.minimum(best, minimize_on_interval(cost, lo, hi, kinks)[1])
     return np.maximum(best - FLOOR_MARGIN_MPS, 0.0)

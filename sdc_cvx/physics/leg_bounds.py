@@ -44,7 +44,9 @@ from .transfer import (
     CLOSED_GAP_RAD,
     NodeOrbits,
     cheapest_transfer,
+    duration_window_interval,
     minimize_on_interval,
+    raan_gap,
     transfer_duration,
     transfer_dv,
 )
@@ -456,6 +458,8 @@ class ImpulsiveModel:
     """
 
     name: ClassVar[str] = "impulsive"
+    bound_tol_mps: ClassVar[float] = 0.0
+    """How far below the exact cost a box shrunk to a point may still be bounded [m/s]."""
 
     def leg_dv(self, origin_a, origin_inc, target_a, target_inc, a_drift, inc_drift, *,
                mu=MU_EARTH):  # fmt: skip
@@ -483,6 +487,18 @@ class ImpulsiveModel:
 
     special_dates = staticmethod(crossing_dates)
     cheapest_transfer = staticmethod(cheapest_transfer)
+
+    def closure_gap(self, origin, target, a_drift, t_depart, *, j2, mu=MU_EARTH):
+        """The RAAN gap [rad] the coast must close (Eq. 10's numerator; no thrust phase)."""
+        return raan_gap(origin, target, t_depart)
+
+    def duration_window(self, origin, target, side, inc_drift, t_depart, min_seconds,
+                        max_seconds, a_low, a_high, *, j2, mu=MU_EARTH):  # fmt: skip
+        """Drift radii on ``side`` whose leg lasts between the bounds [s]: one interval
+        (:func:`~sdc_cvx.physics.transfer.duration_window_interval`)."""
+        return duration_window_interval(raan_gap(origin, target, t_depart), target.rate, side,
+                                        inc_drift, min_seconds, max_seconds, a_low, a_high,
+                                        j2=j2, mu=mu)  # fmt: skip
 
     def describe(self) -> dict:
         """The model's name and parameters, for ``solution.json``."""

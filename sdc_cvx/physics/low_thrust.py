@@ -62,6 +62,8 @@ from .transfer import NodeOrbits, TransferChoice, drift_duration, raan_gap
 
 PREOPT_GRID = 257
 """Drift radii per edge scanned by :func:`cheapest_transfer` (then zoomed around the best)."""
+WINDOW_GRID = 257
+"""Drift radii per edge scanned by :func:`duration_window`."""
 
 
 def spiral_dv(a_from, a_to, *, mu=MU_EARTH):
@@ -169,6 +171,64 @@ def leg_dv(origin_a, origin_inc, target_a, target_inc, a_drift, accel=1.0, *, mu
             + spiral_dv(a_drift, target_a, mu=mu))  # fmt: skip
 
 
+def closure_gap(origin: NodeOrbits, target: NodeOrbits, a_drift, t_depart, accel, *, j2=J2,
+                mu=MU_EARTH):  # fmt: skip
+    """The RAAN gap [rad] the coast must close (mod 2 pi): ``G(t) + Omega_dot_j t_thrust -
+    dOmega_thrust`` for the leg leaving at ``t_depart`` [s] with drift radius ``a_drift``."""
+    phases = leg_phases(origin.a, origin.inc, target.a, target.inc, a_drift, accel, j2=j2, mu=mu)
+    return (raan_gap(origin, target, t_depart) + target.rate * phases.thrust_seconds
+            - phases.raan_thrust)  # fmt: skip
+
+
+def duration_window(origin: NodeOrbits, target: NodeOrbits, side, inc_drift, t_depart,
+                    min_seconds, max_seconds, a_low, a_high, accel, *, j2=J2, mu=MU_EARTH,
+                    points=WINDOW_GRID):  # fmt: skip
+    """Drift radii [m] on ``side`` whose leg from ``t_depart`` [s] lasts between the bounds [s].
+
+    The low-thrust counterpart of
+    :func:`~sdc_cvx.physics.transfer.duration_window_interval` (for the paper's method):
+    the set is not one interval here (the thrust time rises away from the debris radii,
+    and the gap the coast closes moves with the radius, so the duration jumps by a lap
+    where it wraps), so a grid of ``points`` radii is scanned and the run of allowed radii
+    that holds the cheapest one is returned (to the grid's resolution).
+
+    Parameters
+    ----------
+    origin, target : NodeOrbits
+        Shape (M,) or broadcastable with ``side`` and ``inc_drift``.
+    side : array_like
+        +1 (the coast precesses faster than the target) or -1.
+    inc_drift : array_like
+        Drift inclination [rad].
+
+    Returns
+    -------
+    lo, hi : ndarray
+        ``nan`` where no radius of the band does it.
+    """
+    side, inc_drift = np.broadcast_arrays(np.asarray(side, float), np.asarray(inc_drift, float))
+    shape = np.broadcast_shapes(side.shape, np.shape(origin.a), np.shape(t_depart))
+    o = NodeOrbits(*(np.broadcast_to(v, shape)[..., None] for v in origin))
+    t = NodeOrbits(*(np.broadcast_to(v, shape)[..., None] for v in target))
+    grid = np.linspace(a_low, a_high, points)
+    inc = np.broadcast_to(inc_drift, shape)[..., None]
+    seconds = leg_seconds(o, t, grid, inc, np.broadcast_to(t_depart, shape)[..., None], accel,
+                          j2=j2, mu=mu)  # fmt: skip
+    rel = raan_rate(grid, 0.0, inc, j2=j2, mu=mu) - t.rate
+    ok = ((np.sign(rel) == np.broadcast_to(side, shape)[..., None]) & (seconds >= min_seconds)
+          & (seconds <= max_seconds))  # fmt: skip
+    cost = np.where(ok, leg_dv(o.a, o.inc, t.a, t.inc, grid, mu=mu), np.inf)
+    best = np.argmin(cost, axis=-1)
+    # the run of allowed grid points around the cheapest: its ends by run labels
+    run = np.cumsum(~ok, axis=-1)  # constant along a run of allowed points
+    mine = ok & (run == np.take_along_axis(run, best[..., None], axis=-1))
+    index = np.arange(points)
+    lo = grid[np.min(np.where(mine, index, points - 1), axis=-1)]
+    hi = grid[np.max(np.where(mine, index, 0), axis=-1)]
+    found = np.isfinite(np.take_along_axis(cost, best[..., None], axis=-1)[..., 0])
+    return np.where(found, lo, np.nan), np.where(found, hi, np.nan)
+
+
 def coast_seconds(origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_depart, accel,
                   *, laps=0, j2=J2, mu=MU_EARTH):  # fmt: skip
     """Coast time t_C [s] that closes the RAAN of the leg leaving at ``t_depart`` [s].
@@ -177,10 +237,9 @@ def coast_seconds(origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_
     t_thrust - dOmega_thrust (mod 2 pi)``, plus ``laps`` relative laps; ``inf`` when the
     drift orbit precesses at the target's rate and the gap is not closed.
     """
-    phases = leg_phases(origin.a, origin.inc, target.a, target.inc, a_drift, accel, j2=j2, mu=mu)
     rate_drift = raan_rate(a_drift, 0.0, inc_drift, j2=j2, mu=mu)
-    gap = raan_gap(origin, target, t_depart) + target.rate * phases.thrust_seconds
-    smallest = drift_duration(gap - phases.raan_thrust, target.rate, rate_drift)
+    gap = closure_gap(origin, target, a_drift, t_depart, accel, j2=j2, mu=mu)
+    smallest = drift_duration(gap, target.rate, rate_drift)
     with np.errstate(divide="ignore", invalid="ignore"):
         lap = 2.0 * np.pi / np.abs(rate_drift - target.rate)
         return smallest + np.where(np.asarray(laps) > 0, laps * lap, 0.0)
@@ -227,8 +286,8 @@ def cheapest_transfer(origin: NodeOrbits, target: NodeOrbits, t_depart, max_dura
         Shape (M,).
     t_depart : float or array_like
         Departure date [s].
-    max_duration : float
-        Duration bound T0 [s].
+    max_duration : float or array_like
+        Duration bound T0 [s] (one, or one per edge).
     a_low, a_high : float
         Drift radius bounds [m].
     accel : float
@@ -243,6 +302,7 @@ def cheapest_transfer(origin: NodeOrbits, target: NodeOrbits, t_depart, max_dura
     """
     m = len(origin.a)
     t_depart = np.broadcast_to(np.asarray(t_depart, dtype=float), (m,))[:, None]
+    max_duration = np.broadcast_to(np.asarray(max_duration, dtype=float), (m,))[:, None]
     grid = np.linspace(a_low, a_high, PREOPT_GRID)
     kinks = np.clip(np.stack([origin.a, target.a], axis=1), a_low, a_high)
     points = np.concatenate([np.broadcast_to(grid, (m, PREOPT_GRID)), kinks], axis=1)
@@ -322,6 +382,8 @@ class LowThrustModel:
 
     accel_mps2: float
     name: ClassVar[str] = "low-thrust"
+    bound_tol_mps: ClassVar[float] = low_thrust_bounds.BOUND_TOL_MPS
+    """How far below the exact cost a box shrunk to a point may still be bounded [m/s]."""
 
     def __post_init__(self):
         if not (np.isfinite(self.accel_mps2) and self.accel_mps2 > 0):
@@ -359,6 +421,17 @@ class LowThrustModel:
         """:func:`~sdc_cvx.physics.low_thrust_bounds.box_bound` at this acceleration."""
         return low_thrust_bounds.box_bound(legs, e, t1, t2, t3, t4, accel=self.accel_mps2,
                                            rule=rule, j2=j2, t_min=t_min, cap=cap)  # fmt: skip
+
+    def closure_gap(self, origin, target, a_drift, t_depart, *, j2, mu=MU_EARTH):
+        """:func:`closure_gap` at this acceleration."""
+        return closure_gap(origin, target, a_drift, t_depart, self.accel_mps2, j2=j2, mu=mu)
+
+    def duration_window(self, origin, target, side, inc_drift, t_depart, min_seconds,
+                        max_seconds, a_low, a_high, *, j2, mu=MU_EARTH):  # fmt: skip
+        """:func:`duration_window` at this acceleration."""
+        return duration_window(origin, target, side, inc_drift, t_depart, min_seconds,
+                               max_seconds, a_low, a_high, self.accel_mps2, j2=j2,
+                               mu=mu)  # fmt: skip
 
     def special_dates(self, legs, e, start, stop):
         """None: thrust takes time, so no leg needs one exact date (only two debris on one

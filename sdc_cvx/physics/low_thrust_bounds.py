@@ -74,6 +74,8 @@ SPEED_TOL = 1e-3
 """Step of speed [m/s] below which a bound's frontier search stops: the bound is then
 within about ``4 * 2.1 * SPEED_TOL`` of the best the enclosure proves (the cost's slope
 in w is at most 2 + (pi/2) dI)."""
+BOUND_TOL_MPS = 4 * 2.1 * SPEED_TOL
+"""How far below the exact cost the bound of a box shrunk to a point may stay [m/s]."""
 
 
 def _pow7(w):

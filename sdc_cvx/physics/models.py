@@ -46,6 +46,7 @@ class TransferModel(Protocol):
     """What a transfer model provides (see the module docstring)."""
 
     name: str
+    bound_tol_mps: float  # how far below the exact cost a point's box bound may stay [m/s]
 
     def leg_dv(self, origin_a, origin_inc, target_a, target_inc, a_drift, inc_drift, *, mu=...):
         ...

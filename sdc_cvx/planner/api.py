@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, SolverFailure
+from ..errors import IgnoredOptionWarning, MissionInfeasible, SolverFailure
 from ..inputs.catalog import Catalog
 from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
@@ -82,9 +82,6 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     """
     _check_types(catalog, mission, solver)
     solver = SolverOptions() if solver is None else solver
-    problem = method_problem(mission, solver)
-    if problem:
-        raise MissionError(problem)
     ignored = ignored_options(mission, solver)
     for message in ignored:
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
@@ -125,15 +122,6 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         )
     solution = _solution(result, nodes, mission, solver, orbits, records, wall)
     return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
-
-
-def method_problem(mission: Mission | None, solver: SolverOptions) -> str | None:
-    """Why ``solver.method`` cannot plan ``mission`` (None when it can)."""
-    if solver.method == "paper" and mission is not None and mission.transfer != "impulsive":
-        return (f"method = 'paper' plans impulsive transfers only, got transfer = "
-                f"{mission.transfer!r}: use the certified method (the default), which plans "
-                "either transfer model")  # fmt: skip
-    return None
 
 
 def ignored_options(mission: Mission | None, solver: SolverOptions) -> list[str]:

@@ -191,10 +191,6 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
     strict = catalog.get("strict", False)
     if strict and catalog_path is None:
         problems.append(f"catalog.strict needs catalog.path ({PAPER_CASE} is all orbits)")
-    if (mission is not None and solver is not None and solver.method == "paper"
-            and mission.transfer != "impulsive"):  # fmt: skip
-        problems.append(f"solver.method = 'paper' plans impulsive transfers only, got "
-                        f"mission.transfer = {mission.transfer!r}: use method = 'certified'")
     campaign = None
     if "campaign" in tables and mission is not None:
         campaign = _campaign(tables["campaign"], mission, problems)

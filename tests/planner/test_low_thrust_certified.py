@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from sdc_cvx import Catalog, Mission, solve
+from sdc_cvx import Catalog, Mission, SolverOptions, solve
 from sdc_cvx.errors import MissionInfeasible
 from sdc_cvx.solution import RunStatus
 
@@ -66,3 +66,20 @@ def test_an_acceleration_too_low_for_any_plan_is_proven_infeasible():
                    tmax_days=120.0, accel_mps2=2e-6, rule="table3") is None  # fmt: skip
     with pytest.raises(MissionInfeasible):
         solve(catalog_of(synthetic), mission(3, 2e-6, "table3", 120.0))
+
+
+@pytest.mark.slow
+def test_the_papers_method_plans_a_low_thrust_mission_that_flies():
+    """method = "paper" with the low-thrust model (a longer T0: its legs take months): a
+    plan of the model, never below the certified optimum, and here the same plan."""
+    mission = Mission(transfer="low-thrust", vehicle={"accel_mps2": 1e-4}, preopt_days=100.0)
+    certified = solve(Catalog.paper_case(), mission)
+    paper = solve(Catalog.paper_case(), mission, solver=SolverOptions(method="paper"))
+    assert paper.lower_bound_mps is None and paper.status.is_solved
+    assert paper.total_dv_mps >= certified.lower_bound_mps - 1e-6
+    assert paper.total_dv_mps <= certified.total_dv_mps * 1.001
+    assert paper.total_duration_days <= mission.tmax_days + 1e-6
+    for leg in paper.legs:  # low-thrust legs: their phases fill the leg
+        phases = [leg.phases[k] for k in ("spiral_out_days", "plane_change_days",
+                                          "coast_days", "spiral_in_days")]  # fmt: skip
+        assert min(phases) >= -1e-9 and sum(phases) == pytest.approx(leg.duration_days)

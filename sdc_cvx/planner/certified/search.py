@@ -155,7 +155,9 @@ class _Search:
         cutoff = self.level - self.node_cost(path)
         schedule = self.known.get(path)
         if schedule is None or not _settles(schedule, cutoff, self.path_tol_rel):
-            schedule = solve_path(problem, tol_mps=PATH_TOL_MPS, tol_rel=self.path_tol_rel,
+            # no finer than the model's box bounds resolve a path (low thrust: mm/s a leg)
+            tol = max(PATH_TOL_MPS, 2.0 * len(path) * self.legs.model.bound_tol_mps)
+            schedule = solve_path(problem, tol_mps=tol, tol_rel=self.path_tol_rel,
                                   time_limit_s=remaining, cutoff_mps=cutoff)  # fmt: skip
         self.settled[path] = schedule.lower_mps + self.node_cost(path)
         self.schedules[path] = schedule

@@ -69,6 +69,7 @@ def edge_geometry(edges: pd.DataFrame, catalog: Catalog, mission: Mission) -> Ed
         a_low=a_low,
         a_high=a_high,
         j2=mission.j2,
+        model=mission.transfer_model(),
     )
 
 
@@ -153,7 +154,7 @@ class _Driver(IncumbentSteps, TrustSteps, TrueModelSteps, LogSteps):
         self.orbits = node_orbits(catalog, mission)
         self.geometry = edge_geometry(self.kept, catalog, mission)
         g = self.geometry
-        edge_floor = transfer_dv_floor(g.origin, g.target, g.a_low, g.a_high)
+        edge_floor = transfer_dv_floor(g.origin, g.target, g.a_low, g.a_high, model=g.model)
         self.floor = path_cost_floor(self.kept["i"], self.kept["j"], edge_floor, nodes.cost_mps,
                                      nodes.legs, first=nodes.first)  # fmt: skip
         start = time.perf_counter()
@@ -409,8 +410,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     plan, drift = driver.global_schedule(path, final)
     driver.log.timings["total_s"] = time.perf_counter() - wall
     ids = catalog.ids
-    legs_out, vehicle, status, vehicle_notes = with_vehicle(make_legs(ids, path, *drift, plan),
-                                                            nodes, path, mission, status)
+    legs_out = make_legs(ids, path, *drift, plan, orbits=driver.orbits, mission=mission)
+    legs_out, vehicle, status, vehicle_notes = with_vehicle(legs_out, nodes, path, mission, status)
     size = driver.model.size()
     return Solution(
         path=tuple(ids[k] for k in path),

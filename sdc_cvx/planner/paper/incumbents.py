@@ -28,7 +28,6 @@ from ...errors import SolverFailure
 from ...network.dominance import cheapest_paths
 from ...physics.orbits import SECONDS_PER_DAY
 from ...physics.plan import PlanEvaluation
-from ...physics.transfer import cheapest_transfer
 from ...solution import RunStatus
 from .settings import frozen_gaps
 
@@ -74,9 +73,11 @@ class IncumbentSteps:
         if share <= 0:
             return
         leg_costs = np.stack([
-            cheapest_transfer(g.origin, g.target, (first_ops + k * (share + ops)) * SECONDS_PER_DAY,
-                              share * SECONDS_PER_DAY, g.a_low, g.a_high,
-                              inclination=self.mission.drift_inclination, j2=self.mission.j2).dv
+            g.model.cheapest_transfer(g.origin, g.target,
+                                      (first_ops + k * (share + ops)) * SECONDS_PER_DAY,
+                                      share * SECONDS_PER_DAY, g.a_low, g.a_high,
+                                      inclination=self.mission.drift_inclination,
+                                      j2=self.mission.j2).dv
             for k in range(legs_count)
         ])  # fmt: skip
         candidates = {}  # path -> edges, in order of ranking

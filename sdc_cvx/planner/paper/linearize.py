@@ -35,15 +35,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ...physics.leg_bounds import IMPULSIVE
+from ...physics.models import TransferModel
 from ...physics.orbits import SECONDS_PER_DAY, wrap_angle
-from ...physics.transfer import (
-    NodeOrbits,
-    drift_rate,
-    duration_bounded_interval,
-    raan_gap,
-    transfer_duration,
-    transfer_dv,
-)
+from ...physics.transfer import NodeOrbits, drift_rate
 
 KM = 1e3
 WRAP_MARGIN_DAYS = 1e-3
@@ -63,6 +58,8 @@ class EdgeGeometry(NamedTuple):
     a_low, a_high : float
         Drift radius bounds [m].
     j2 : float
+    model : TransferModel
+        The leg physics (:mod:`~sdc_cvx.physics.models`), impulsive by default.
     """
 
     origin: NodeOrbits
@@ -72,35 +69,39 @@ class EdgeGeometry(NamedTuple):
     a_low: float
     a_high: float
     j2: float
+    model: TransferModel = IMPULSIVE
 
     def cost(self, a):
         """True cost [m/s] of each edge with drift radius ``a`` [m] (Eq. 11-13)."""
-        return transfer_dv(
+        return self.model.leg_dv(
             self.origin.a, self.origin.inc, self.target.a, self.target.inc, a, self.inc_drift
         )
 
     def duration_days(self, a, t_days):
         """True duration [days] of each edge with drift radius ``a`` [m] leaving at ``t_days``."""
-        seconds = transfer_duration(
+        seconds = self.model.leg_seconds(
             self.origin, self.target, a, self.inc_drift, t_days * SECONDS_PER_DAY, j2=self.j2
         )
         return seconds / SECONDS_PER_DAY
 
     def radius_window(self, t_days, max_days):
-        """Drift radii [m] on the edge's side whose coast from ``t_days`` lasts <= ``max_days``."""
-        return duration_bounded_interval(
-            raan_gap(self.origin, self.target, t_days * SECONDS_PER_DAY),
-            self.target.rate, self.side, self.inc_drift, max_days * SECONDS_PER_DAY,
-            self.a_low, self.a_high, j2=self.j2,
+        """Drift radii [m] on the edge's side whose leg from ``t_days`` lasts <= ``max_days``."""
+        return self.model.duration_window(
+            self.origin, self.target, self.side, self.inc_drift, t_days * SECONDS_PER_DAY, 0.0,
+            max_days * SECONDS_PER_DAY, self.a_low, self.a_high, j2=self.j2,
         )  # fmt: skip
 
-    def unwrapped_date_window(self, t_days):
+    def unwrapped_date_window(self, t_days, a_ref):
         """Departure dates [days] around ``t_days`` over which the RAAN gap does not wrap.
 
         Within it the duration is linear in the date (Eq. 10); at one end the gap
-        closes (duration 0), at the other it would need a full extra revolution.
+        closes (duration 0), at the other it would need a full extra revolution.  The
+        gap is the one the coast closes with the drift radius ``a_ref`` [m] (for a
+        low-thrust leg it moves with the radius; the impulsive gap does not).
         """
-        gap = wrap_angle(raan_gap(self.origin, self.target, t_days * SECONDS_PER_DAY), self.side)
+        t_seconds = t_days * SECONDS_PER_DAY
+        gap = wrap_angle(self.model.closure_gap(self.origin, self.target, a_ref, t_seconds,
+                                                j2=self.j2), self.side)  # fmt: skip
         closing = (self.target.rate - self.origin.rate) * SECONDS_PER_DAY  # rad/day
         with np.errstate(divide="ignore", invalid="ignore"):
             ends = np.stack([-gap / closing, (2 * np.pi * self.side - gap) / closing])
@@ -222,7 +223,8 @@ def linearize(
     a_ref = np.clip(region.a_ref, window_lo, window_hi)
     a_lo = np.maximum(window_lo, a_ref - region.alpha_km * KM)
     a_hi = np.minimum(window_hi, a_ref + region.alpha_km * KM)
-    wrap_lo, wrap_hi = geometry.unwrapped_date_window(t_ref)
+    wrap_lo, wrap_hi = geometry.unwrapped_date_window(t_ref, np.where(np.isfinite(a_ref), a_ref,
+                                                                      geometry.target.a))
     range_lo = np.broadcast_to(np.asarray(depart_range[0], dtype=float), t_ref.shape)
     range_hi = np.broadcast_to(np.asarray(depart_range[1], dtype=float), t_ref.shape)
     depart_lo = np.maximum.reduce([wrap_lo, t_ref - region.tau_days, range_lo])

@@ -31,18 +31,10 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import minimize
 
+from ...physics.leg_bounds import IMPULSIVE
 from ...physics.orbits import SECONDS_PER_DAY, circular_a_for_raan_rate
 from ...physics.plan import PlanEvaluation, evaluate_plan
-from ...physics.transfer import (
-    NodeOrbits,
-    drift_inclination,
-    drift_rate,
-    duration_window_interval,
-    minimize_on_interval,
-    raan_gap,
-    transfer_duration,
-    transfer_dv,
-)
+from ...physics.transfer import NodeOrbits, drift_inclination, drift_rate, minimize_on_interval
 from .linearize import KM
 
 ASYMPTOTE_MARGIN = 1e-6  # relative distance kept from the asymptote
@@ -72,11 +64,12 @@ def side_bounds(orbits: NodeOrbits, path, side, inc_drift, a_low, a_high, *, j2)
 
 
 def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, min_days,
-                 a_low, a_high, inclination, j2):  # fmt: skip
+                 a_low, a_high, inclination, j2, model=IMPULSIVE):  # fmt: skip
     """Legs chosen one after the other, each minimising ``dV + price * T`` [m/s, m/s/day].
 
     Each leg leaves when the previous one has arrived (plus the operations) and
-    considers both sides of its asymptote with the allowed inclinations at once.
+    considers both sides of its asymptote with the allowed inclinations at once, in the
+    transfer model ``model``.
 
     Returns
     -------
@@ -99,15 +92,14 @@ def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, mi
             else np.concatenate([origin.inc, target.inc, origin.inc, target.inc])
         )
         t_depart = ready * SECONDS_PER_DAY
-        gap = raan_gap(origin, target, t_depart)
-        lo, hi = duration_window_interval(
-            gap, target.rate, sides, incs, min_days * SECONDS_PER_DAY,
+        lo, hi = model.duration_window(
+            origin, target, sides, incs, t_depart, min_days * SECONDS_PER_DAY,
             remaining * SECONDS_PER_DAY, a_low, a_high, j2=j2,
         )  # fmt: skip
 
         def cost(a, origin=origin, target=target, incs=incs, t_depart=t_depart):
-            dv = transfer_dv(origin.a, origin.inc, target.a, target.inc, a, incs[:, None])
-            seconds = transfer_duration(origin, target, a, incs[:, None], t_depart, j2=j2)
+            dv = model.leg_dv(origin.a, origin.inc, target.a, target.inc, a, incs[:, None])
+            seconds = model.leg_seconds(origin, target, a, incs[:, None], t_depart, j2=j2)
             return dv + price * seconds / SECONDS_PER_DAY
 
         kinks = np.broadcast_to(np.array([origin.a[0], target.a[0]]), (len(sides), 2))
@@ -116,14 +108,15 @@ def forward_pass(orbits: NodeOrbits, path, price, *, tmax_days, deorbit_days, mi
         if not np.isfinite(f_best[pick]):
             break
         a_out[k], inc_out[k], side_out[k] = a_best[pick], incs[pick], sides[pick]
-        seconds = transfer_duration(origin, target, a_out[k], inc_out[k], t_depart, j2=j2)[0]
+        seconds = model.leg_seconds(origin, target, a_out[k], inc_out[k], t_depart, j2=j2)[0]
         ready += seconds / SECONDS_PER_DAY + float(ops[path[k + 1]])
     return a_out, inc_out, side_out
 
 
 def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days, deorbit_days,
                a_low, a_high, j2, inclination="table3", min_days=0.0,
-               bisection_steps=BISECTION_STEPS, polish=True) -> Reoptimized:  # fmt: skip
+               bisection_steps=BISECTION_STEPS, polish=True,
+               model=IMPULSIVE) -> Reoptimized:  # fmt: skip
     """Minimise the true total ΔV of a fixed path subject to the true end date <= T_max.
 
     Parameters
@@ -147,6 +140,8 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
         Bisection steps on the price of time.
     polish : bool
         Polish the best plan with SLSQP (fewer steps and no polish: a quicker estimate).
+    model : TransferModel
+        The leg physics (:mod:`~sdc_cvx.physics.models`).
 
     Returns
     -------
@@ -154,10 +149,10 @@ def reoptimize(orbits: NodeOrbits, path, side, inc_drift, a_start, *, tmax_days,
         The cheapest plan found that ends by T_max (or the start if none does).
     """
     kwargs = dict(tmax_days=tmax_days, deorbit_days=deorbit_days, min_days=min_days,
-                  a_low=a_low, a_high=a_high, j2=j2)  # fmt: skip
+                  a_low=a_low, a_high=a_high, j2=j2, model=model)  # fmt: skip
 
     def plan(a, inc):
-        return evaluate_plan(orbits, path, a, inc, deorbit_days=deorbit_days, j2=j2)
+        return evaluate_plan(orbits, path, a, inc, deorbit_days=deorbit_days, j2=j2, model=model)
 
     def feasible(evaluation):
         in_time = np.isfinite(evaluation.end_day) and evaluation.end_day <= tmax_days + 1e-6

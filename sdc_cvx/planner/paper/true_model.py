@@ -27,13 +27,13 @@ import numpy as np
 from ...physics.leg_bounds import LegCosts
 from ...physics.orbits import SECONDS_PER_DAY
 from ...physics.plan import PlanEvaluation, evaluate_plan
-from ...physics.transfer import cheapest_transfer
 from ..fixed_path import PathProblem, schedule_plan, solve_path
 from .linearize import TrustRegion
 from .reoptimize import reoptimize
 
 SCHEDULE_TOL_MPS = 0.01
 """Certificate of the final path's schedule [m/s] (:meth:`TrueModelSteps.global_schedule`)."""
+
 
 
 class TrueModelSteps:
@@ -47,7 +47,7 @@ class TrueModelSteps:
     def evaluate(self, path, legs, a_legs) -> PlanEvaluation:
         return evaluate_plan(
             self.orbits, path, a_legs, self.geometry.inc_drift[legs],
-            deorbit_days=self.nodes.deorbit_days, j2=self.mission.j2,
+            deorbit_days=self.nodes.deorbit_days, j2=self.mission.j2, model=self.geometry.model,
         )  # fmt: skip
 
     def true_optimum(self, path, legs, a_start, **options):
@@ -59,7 +59,7 @@ class TrueModelSteps:
             tmax_days=self.mission.tmax_days, deorbit_days=self.nodes.deorbit_days,
             a_low=g.a_low, a_high=g.a_high, j2=self.mission.j2,
             inclination=self.mission.drift_inclination,
-            min_days=self.mission.min_transfer_days, **options,
+            min_days=self.mission.min_transfer_days, model=g.model, **options,
         )  # fmt: skip
 
     def adopt(self, legs, final):
@@ -101,23 +101,26 @@ class TrueModelSteps:
         start = time.perf_counter()
         g, mission, ops = self.geometry, self.mission, self.nodes.deorbit_days
         legs_table = LegCosts.build(self.orbits.take(path[:-1]), self.orbits.take(path[1:]),
-                                    g.a_low, g.a_high)  # fmt: skip
+                                    g.a_low, g.a_high, model=g.model)  # fmt: skip
         problem = PathProblem(legs_table, tuple(range(len(path) - 1)),
                               tuple(float(ops[k]) for k in path), mission.tmax_days,
                               mission.min_transfer_days, mission.drift_inclination,
                               mission.j2)  # fmt: skip
-        schedule = solve_path(problem, tol_mps=SCHEDULE_TOL_MPS)
         local = float(final.evaluation.dv_mps.sum())
+        # no finer than the model's box bounds resolve a path (low thrust: a few mm/s a leg)
+        tol = max(SCHEDULE_TOL_MPS, 2.0 * len(path) * g.model.bound_tol_mps)
+        schedule = solve_path(problem, tol_mps=tol)
         self.log.timings["global_schedule_s"] = time.perf_counter() - start
-        if not schedule.feasible or schedule.upper_mps >= local - SCHEDULE_TOL_MPS:
-            if schedule.lower_mps >= local - SCHEDULE_TOL_MPS:
+        if not schedule.feasible or schedule.upper_mps >= local - tol:
+            if schedule.lower_mps >= local - tol:
                 self.log.notes.append(
                     f"the path's schedule is its optimum within "
-                    f"{SCHEDULE_TOL_MPS:g} m/s (the path itself is not proven)"
+                    f"{tol:.2g} m/s (the path itself is not proven)"
                 )
             return final.evaluation, (final.a_drift, final.inc_drift, final.side)
         plan, notes = schedule_plan(self.orbits, path, schedule, deorbit_days=ops,
-                                    tmax_days=mission.tmax_days, j2=mission.j2)  # fmt: skip
+                                    tmax_days=mission.tmax_days, j2=mission.j2,
+                                    model=g.model)  # fmt: skip
         self.log.notes += notes + [
             f"the path's schedule optimised globally: {local:.2f} -> "
             f"{schedule.upper_mps:.2f} m/s of transfers (the local re-optimisation stopped "
@@ -131,7 +134,7 @@ class TrueModelSteps:
         # each leg may take its own time plus all of the mission's slack
         slack = max(self.mission.tmax_days - evaluation.end_day, 0.0)
         allotted = (evaluation.duration_days + slack) * SECONDS_PER_DAY
-        best = cheapest_transfer(
+        best = self.geometry.model.cheapest_transfer(
             origins, targets, evaluation.departure_day * SECONDS_PER_DAY, allotted,
             self.geometry.a_low, self.geometry.a_high,
             inclination=self.mission.drift_inclination, j2=self.mission.j2,
