@@ -147,10 +147,22 @@ class _Pieces(NamedTuple):
 
 
 def _pieces(legs, e, accel: float, rule: str, j2: float, shape) -> _Pieces:
-    """Pieces of the drift band of edges ``e`` for both drift inclinations, shaped ``shape``."""
+    """Pieces of the drift band of edges ``e`` for both drift inclinations, shaped ``shape``.
+
+    Computed once per distinct edge (a call usually holds a few edges and many dates),
+    then spread to the elements.
+    """
+    unique, inverse = np.unique(np.broadcast_to(np.asarray(e), shape), return_inverse=True)
+    per_edge = _edge_pieces(legs, unique, accel, rule, j2)
+    index = inverse.reshape(shape)
+    return _Pieces(*(v[:, index] for v in per_edge[:-1]), per_edge.f_day)
+
+
+def _edge_pieces(legs, e, accel: float, rule: str, j2: float) -> _Pieces:
+    """:func:`_pieces` of the edges ``e`` (1-D), fields shaped (2 * PIECES, len(e))."""
     mu, r_eq = legs.mu, R_EARTH
     o, t = legs.origin, legs.target
-    e = np.broadcast_to(np.asarray(e), shape)
+    shape = e.shape
     v_i, v_j = circular_speed(o.a[e], mu=mu), circular_speed(t.a[e], mu=mu)
     inc_i, inc_j = o.inc[e], t.inc[e]
     d_inc = np.abs(inc_j - inc_i)
