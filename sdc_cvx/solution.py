@@ -274,8 +274,8 @@ class Solution:
                 f"          transfers {self.transfers_dv_mps:.1f} m/s + operations "
                 f"{self.operations_dv_mps:.1f} m/s (deorbit by {self.operations.get('scenario')})"
             )
-        if self.mission.transfer != "impulsive":
-            model = self.mission.transfer_model().describe()
+        model = self.mission.transfer_model().describe()
+        if len(model) > 1:  # a model with parameters (the impulsive one has none)
             lines.append(f"transfer  {model.pop('transfer')}"
                          + "".join(f", {k} {v:g}" for k, v in model.items()))  # fmt: skip
         if self.vehicle and "propellant_needed_kg" in self.vehicle:

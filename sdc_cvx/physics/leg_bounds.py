@@ -475,8 +475,8 @@ class ImpulsiveModel:
             return seconds + np.where(np.asarray(laps) > 0, laps * TWO_PI / rel, 0.0)
 
     def phase_days(self, origin_a, origin_inc, target_a, target_inc, a_drift, duration_days):
-        """The leg's phases [days]: all coast (the impulses take no time)."""
-        return {"coast_days": np.asarray(duration_days, dtype=float)}
+        """None to report: the leg is all coast, the impulses take no time."""
+        return {}
 
     cost_at = staticmethod(leg_cost_at)
 

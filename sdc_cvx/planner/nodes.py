@@ -96,18 +96,21 @@ def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation, *, orbi
               mission: Mission | None = None, laps=None) -> tuple[Leg, ...]:  # fmt: skip
     """Legs of a plan evaluated with the true model, in people's units.
 
-    With ``orbits`` (the nodes' :class:`~sdc_cvx.physics.transfer.NodeOrbits`) and a
-    ``mission`` whose transfer model is not impulsive, each leg carries its phases.
+    With ``orbits`` (the nodes' :class:`~sdc_cvx.physics.transfer.NodeOrbits`) and the
+    ``mission``, each leg carries the phases its transfer model reports (none for the
+    impulsive leg, whose burns take no time) and its extra laps.
     """
     phases = [{} for _ in range(len(path) - 1)]
-    if mission is not None and orbits is not None and mission.transfer != "impulsive":
+    days = {}
+    if mission is not None and orbits is not None:
         p = np.asarray(path)
         days = mission.transfer_model().phase_days(
             orbits.a[p[:-1]], orbits.inc[p[:-1]], orbits.a[p[1:]], orbits.inc[p[1:]],
             np.asarray(a_drift), plan.duration_days)  # fmt: skip
-        laps = np.zeros(len(p) - 1, dtype=int) if laps is None or not len(laps) else laps
+    if days:
+        laps = np.zeros(len(path) - 1, dtype=int) if laps is None or not len(laps) else laps
         phases = [{name: float(v[k]) for name, v in days.items()} | {"laps": int(laps[k])}
-                  for k in range(len(p) - 1)]  # fmt: skip
+                  for k in range(len(path) - 1)]  # fmt: skip
     return tuple(
         Leg(
             from_id=ids[path[k]],
