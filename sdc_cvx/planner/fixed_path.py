@@ -135,10 +135,14 @@ class PathSchedule:
 
 
 class _Cells:
-    """Date cells of one position: sorted, disjoint ``[lo, hi]`` with stable ids."""
+    """Date cells of one position: sorted, disjoint ``[lo, hi]`` with stable ids, and the
+    least cost to reach each (``into``) and to end the path from it (``onward``) that the
+    last round's bounds proved (0 before any: no information)."""
 
-    def __init__(self, lo, hi, ids, next_id):
+    def __init__(self, lo, hi, ids, next_id, into=None, onward=None):
         self.lo, self.hi, self.ids, self.next_id = lo, hi, ids, next_id
+        self.into = np.zeros(len(lo)) if into is None else into
+        self.onward = np.zeros(len(lo)) if onward is None else onward
 
     @classmethod
     def uniform(cls, start, stop, count, first_id=0):
@@ -150,9 +154,13 @@ class _Cells:
     def __len__(self):
         return len(self.lo)
 
-    def refine(self, split, keep):
-        """Split the cells in ``split`` in ``SPLIT`` parts; drop those not in ``keep``."""
-        lo, hi, ids = [], [], []
+    def refine(self, split, keep, into, onward):
+        """Split the cells in ``split`` in ``SPLIT`` parts; drop those not in ``keep``.
+
+        ``into`` and ``onward`` are this round's bounds of each cell; a part inherits its
+        cell's (a part's own are at least as high, the exact ones at least).
+        """
+        lo, hi, ids, into_out, onward_out = [], [], [], [], []
         next_id = self.next_id
         for k in range(len(self.lo)):
             if not keep[k]:
@@ -163,11 +171,16 @@ class _Cells:
                 hi += list(edges[1:])
                 ids += list(range(next_id, next_id + SPLIT))
                 next_id += SPLIT
+                into_out += [into[k]] * SPLIT
+                onward_out += [onward[k]] * SPLIT
             else:
                 lo.append(self.lo[k])
                 hi.append(self.hi[k])
                 ids.append(self.ids[k])
-        return _Cells(np.array(lo), np.array(hi), np.array(ids, dtype=int), next_id)
+                into_out.append(into[k])
+                onward_out.append(onward[k])
+        return _Cells(np.array(lo), np.array(hi), np.array(ids, dtype=int), next_id,
+                      np.array(into_out), np.array(onward_out))  # fmt: skip
 
 
 class _BoundCache:
@@ -178,9 +191,13 @@ class _BoundCache:
         self.matrix = np.empty((0, 0))
 
     def update(self, problem: PathProblem, k: int, cells_from: _Cells, cells_to: _Cells,
-               cap: float = np.inf):  # fmt: skip
-        """The bounds between the cells of positions k and k + 1; a new box's bound may
-        stop at ``cap`` (a box above it cannot be on a schedule the search still wants)."""
+               limit: float = np.inf, floor_elsewhere: float = 0.0):  # fmt: skip
+        """The bounds between the cells of positions k and k + 1.
+
+        A new box's bound may stop once a schedule through it would cost more than
+        ``limit``: at ``limit`` less what the cells' ``into`` and ``onward`` bounds (or the
+        other legs' floors, ``floor_elsewhere``, when larger) already prove of the rest.
+        """
         r_map = _positions(self.rows, cells_from.ids)
         c_map = _positions(self.cols, cells_to.ids)
         out = np.full((len(cells_from), len(cells_to)), np.nan)
@@ -190,6 +207,8 @@ class _BoundCache:
             out[rr, cc] = self.matrix[r_map[rr], c_map[cc]]
         rr, cc = np.nonzero(~known)
         if len(rr):
+            rest = np.maximum(cells_from.into[rr] + cells_to.onward[cc], floor_elsewhere)
+            cap = np.nan_to_num(limit - rest + 1e-6, nan=np.inf)
             ops = problem.ops_days[k + 1]
             out[rr, cc] = problem.legs.box_bound(
                 problem.edges[k], cells_from.lo[rr], cells_from.hi[rr],
@@ -245,12 +264,10 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
     special = _special_dates(problem, earliest)
     floors = problem.legs.floor(np.asarray(problem.edges))
     for rounds in range(1, max_rounds + 1):  # noqa: B007 - reported after the loop
-        # a box of leg k above ``limit - (the other legs' floors)`` is on no schedule under
-        # the limit: its bound need not be refined past that
-        caps = np.nan_to_num(min(best_upper, cutoff_mps) - (floors.sum() - floors) + 1e-6,
-                             nan=np.inf)
-        bounds = [caches[k].update(problem, k, cells[k], cells[k + 1], caps[k])
-                  for k in range(L)]  # fmt: skip
+        # a box on no schedule under the limit need not have its bound refined past it
+        limit = min(best_upper, cutoff_mps)
+        bounds = [caches[k].update(problem, k, cells[k], cells[k + 1], limit,
+                                   floors.sum() - floors[k]) for k in range(L)]  # fmt: skip
         backward = [None] * (L + 1)
         backward[L] = np.zeros(len(cells[L]))
         choice = [None] * L
@@ -284,7 +301,7 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
             split[np.argsort(through)[:SPLIT_CELLS]] = True
             split &= through < limit - tol
             split[chain[k]] = True
-            new_cells.append(cells[k].refine(split, keep))
+            new_cells.append(cells[k].refine(split, keep, forward[k], backward[k]))
         unchanged = (np.array_equal(a.ids, b.ids) for a, b in zip(cells, new_cells, strict=True))
         if all(unchanged):
             break  # nothing left to split: the cells are at their narrowest
