@@ -89,7 +89,9 @@ class _Search:
                  ceiling_mps=-np.inf, known=None):  # fmt: skip
         n = len(nodes.ops_days)
         self.names = [str(k) for k in range(n)] if names is None else [str(v) for v in names]
-        self.path_tol_rel, self.gap_abs = path_tol_rel, gap_abs_mps
+        # no finer than the model's box bounds resolve a mission (low thrust: mm/s a leg)
+        self.path_tol_rel = path_tol_rel
+        self.gap_abs = max(gap_abs_mps, 2.0 * nodes.legs * nodes.model.bound_tol_mps)
         self.ceiling = ceiling_mps  # enumeration: every path whose bound is under it
         self.nodes, self.n, self.deadline, self.say = nodes, n, deadline, say
         excluded = np.zeros(n, dtype=bool)
