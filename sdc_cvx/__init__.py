@@ -37,6 +37,7 @@ _EXPORTS = {
     "Solution": "sdc_cvx.solution",
     "SolverFailure": "sdc_cvx.errors",
     "SolverOptions": "sdc_cvx.milp.types",
+    "Vehicle": "sdc_cvx.inputs.vehicle",
     "plot_sweep": "sdc_cvx.study.figure",
     "preoptimize": "sdc_cvx.network.edges",
     "solve": "sdc_cvx.planner.api",
@@ -58,6 +59,7 @@ __all__ = [
     "Solution",
     "SolverFailure",
     "SolverOptions",
+    "Vehicle",
     "plot_sweep",
     "preoptimize",
     "solve",
@@ -73,6 +75,7 @@ if TYPE_CHECKING:
     from .inputs.campaign import Campaign
     from .inputs.catalog import Catalog
     from .inputs.mission import Mission
+    from .inputs.vehicle import Vehicle
     from .milp.types import SolverOptions
     from .network.edges import EdgeTable, preoptimize
     from .planner.api import solve

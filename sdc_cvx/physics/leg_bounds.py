@@ -35,13 +35,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar, NamedTuple
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
 from .orbits import MU_EARTH, SECONDS_PER_DAY, circular_a_for_raan_rate, raan_rate
 from .transfer import (
     CLOSED_GAP_RAD,
+    LegAtDates,
     NodeOrbits,
     cheapest_transfer,
     duration_window_interval,
@@ -60,28 +61,6 @@ GRID_POINTS = 513
 MAX_MINIMA = 4
 """Interior local minima kept per edge and inclination (the cost has at most one per piece)."""
 INCLINATION_RULES = ("table3", "free")
-
-
-class LegAtDates(NamedTuple):
-    """The cheapest leg of an edge between two dates, in any transfer model.
-
-    Attributes
-    ----------
-    cost : ndarray
-        ΔV [m/s]; ``inf`` where no leg of the model flies between the two dates.
-    a_drift, inc_drift : ndarray
-        Drift radius [m] and inclination [rad] (``nan`` where none).
-    side : ndarray
-        +1 where the drift orbit precesses faster than the target, -1 slower (0: none).
-    laps : ndarray of int
-        Relative laps of the coast beyond the first that closes the RAAN gap.
-    """
-
-    cost: np.ndarray
-    a_drift: np.ndarray
-    inc_drift: np.ndarray
-    side: np.ndarray
-    laps: np.ndarray
 
 
 @dataclass(frozen=True)

@@ -57,9 +57,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .leg_bounds import LegAtDates
 from .orbits import R_EARTH, SECONDS_PER_DAY, circular_speed
-from .transfer import CLOSED_GAP_RAD
+from .transfer import CLOSED_GAP_RAD, LegAtDates
 
 TWO_PI = 2.0 * np.pi
 PIECES = 4

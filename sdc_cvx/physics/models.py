@@ -35,8 +35,9 @@ from __future__ import annotations
 
 from typing import Protocol
 
-from .leg_bounds import IMPULSIVE, ImpulsiveModel, LegAtDates
+from .leg_bounds import IMPULSIVE, ImpulsiveModel
 from .low_thrust import LowThrustModel
+from .transfer import LegAtDates
 
 TRANSFER_MODELS = ("impulsive", "low-thrust")
 """Names of the transfer models (``Mission.transfer``)."""

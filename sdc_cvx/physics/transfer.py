@@ -266,6 +266,28 @@ def duration_window_interval(gap, rate_target, side, inc_drift, min_duration, ma
     return np.where(empty, np.nan, lo), np.where(empty, np.nan, hi)
 
 
+class LegAtDates(NamedTuple):
+    """The cheapest leg of an edge between two dates, in any transfer model.
+
+    Attributes
+    ----------
+    cost : ndarray
+        ΔV [m/s]; ``inf`` where no leg of the model flies between the two dates.
+    a_drift, inc_drift : ndarray
+        Drift radius [m] and inclination [rad] (``nan`` where none).
+    side : ndarray
+        +1 where the drift orbit precesses faster than the target, -1 slower (0: none).
+    laps : ndarray of int
+        Relative laps of the coast beyond the first that closes the RAAN gap.
+    """
+
+    cost: np.ndarray
+    a_drift: np.ndarray
+    inc_drift: np.ndarray
+    side: np.ndarray
+    laps: np.ndarray
+
+
 class TransferChoice(NamedTuple):
     """Cheapest drift transfer found per edge (arrays aligned with the input edges).
 
