@@ -184,7 +184,9 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
     mission_values = tables.get("mission", {})
     if "vehicle" in tables:
         vehicle = _make(Vehicle, "vehicle", tables["vehicle"], problems)
-        mission_values = mission_values | {"vehicle": vehicle} if vehicle else mission_values
+        # a vehicle refused is said once: not again as a low-thrust mission without one
+        mission_values = mission_values | ({"vehicle": vehicle} if vehicle is not None
+                                           else {"transfer": "impulsive"})  # fmt: skip
     mission = _make(Mission, "mission", mission_values, problems)
     solver = _make(SolverOptions, "solver", tables.get("solver", {}), problems)
     selection = _make(Selection, "selection", tables.get("selection", {}), problems)

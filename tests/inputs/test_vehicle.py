@@ -91,6 +91,12 @@ def test_the_vehicle_table_reads_back_from_the_scenario_as_used(tmp_path):
     path.write_text('[vehicle]\nisp_s = -3\n')
     with pytest.raises(ScenarioError, match=r"vehicle\.isp_s must be a finite number > 0"):
         Scenario.load(path)
+    # a bad acceleration is said once, not again as a low-thrust mission without one
+    path.write_text('[mission]\ntransfer = "low-thrust"\n[vehicle]\naccel_mps2 = -1e-4\n')
+    with pytest.raises(ScenarioError) as refused:
+        Scenario.load(path)
+    assert "vehicle.accel_mps2 must be a finite number > 0" in str(refused.value)
+    assert "needs the vehicle's acceleration" not in str(refused.value)
 
 
 @pytest.mark.slow
