@@ -164,7 +164,7 @@ def leg_phases(origin_a, origin_inc, target_a, target_inc, a_drift, accel, *, j2
                            spiral_dv(a_drift, target_a, mu=mu), raan, float(accel))  # fmt: skip
 
 
-def leg_dv(origin_a, origin_inc, target_a, target_inc, a_drift, accel=1.0, *, mu=MU_EARTH):
+def leg_dv(origin_a, origin_inc, target_a, target_inc, a_drift, *, mu=MU_EARTH):
     """ΔV [m/s] of the low-thrust leg: spiral, plane change, spiral (independent of f and I_d)."""
     return (spiral_dv(origin_a, a_drift, mu=mu)
             + plane_change_dv(a_drift, origin_inc, target_inc, mu=mu)
@@ -176,6 +176,11 @@ def closure_gap(origin: NodeOrbits, target: NodeOrbits, a_drift, t_depart, accel
     """The RAAN gap [rad] the coast must close (mod 2 pi): ``G(t) + Omega_dot_j t_thrust -
     dOmega_thrust`` for the leg leaving at ``t_depart`` [s] with drift radius ``a_drift``."""
     phases = leg_phases(origin.a, origin.inc, target.a, target.inc, a_drift, accel, j2=j2, mu=mu)
+    return _closure_gap(origin, target, phases, t_depart)
+
+
+def _closure_gap(origin: NodeOrbits, target: NodeOrbits, phases: LowThrustPhases, t_depart):
+    """:func:`closure_gap` from the legs' thrust phases, already computed."""
     return (raan_gap(origin, target, t_depart) + target.rate * phases.thrust_seconds
             - phases.raan_thrust)  # fmt: skip
 
@@ -230,15 +235,20 @@ def duration_window(origin: NodeOrbits, target: NodeOrbits, side, inc_drift, t_d
 
 
 def coast_seconds(origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_depart, accel,
-                  *, laps=0, j2=J2, mu=MU_EARTH):  # fmt: skip
+                  *, laps=0, j2=J2, mu=MU_EARTH,
+                  phases: LowThrustPhases | None = None):  # fmt: skip
     """Coast time t_C [s] that closes the RAAN of the leg leaving at ``t_depart`` [s].
 
     The smallest ``t_C >= 0`` with ``(Omega_dot_d - Omega_dot_j) t_C = G(t) + Omega_dot_j
     t_thrust - dOmega_thrust (mod 2 pi)``, plus ``laps`` relative laps; ``inf`` when the
-    drift orbit precesses at the target's rate and the gap is not closed.
+    drift orbit precesses at the target's rate and the gap is not closed.  ``phases``: the
+    legs' :func:`leg_phases`, when already computed.
     """
+    if phases is None:
+        phases = leg_phases(origin.a, origin.inc, target.a, target.inc, a_drift, accel, j2=j2,
+                            mu=mu)  # fmt: skip
     rate_drift = raan_rate(a_drift, 0.0, inc_drift, j2=j2, mu=mu)
-    gap = closure_gap(origin, target, a_drift, t_depart, accel, j2=j2, mu=mu)
+    gap = _closure_gap(origin, target, phases, t_depart)
     smallest = drift_duration(gap, target.rate, rate_drift)
     with np.errstate(divide="ignore", invalid="ignore"):
         lap = 2.0 * np.pi / np.abs(rate_drift - target.rate)
@@ -248,10 +258,10 @@ def coast_seconds(origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_
 def leg_seconds(origin: NodeOrbits, target: NodeOrbits, a_drift, inc_drift, t_depart, accel, *,
                 laps=0, j2=J2, mu=MU_EARTH):  # fmt: skip
     """Duration [s] of the low-thrust leg leaving at ``t_depart`` [s]: thrust plus coast."""
-    thrust = leg_dv(origin.a, origin.inc, target.a, target.inc, a_drift, mu=mu) / accel
-    coast = coast_seconds(origin, target, a_drift, inc_drift, t_depart, accel, laps=laps, j2=j2,
-                          mu=mu)  # fmt: skip
-    return thrust + coast
+    phases = leg_phases(origin.a, origin.inc, target.a, target.inc, a_drift, accel, j2=j2, mu=mu)
+    return phases.thrust_seconds + coast_seconds(origin, target, a_drift, inc_drift, t_depart,
+                                                 accel, laps=laps, j2=j2, mu=mu,
+                                                 phases=phases)  # fmt: skip
 
 
 def allowed_inclination(inc_drift, origin_inc, target_inc, rate_drift, rate_target, rule):
