@@ -432,18 +432,36 @@ def _phi_parts(p: _Pieces, t1, t2, t3, t4, x, y, t_min):
     ws = p.beta_stationary()
     inside = (ws > w_lo) & (ws < w_hi)
     # beta at w_lo stands in for the stationary point when it is not inside
-    betas = np.stack([p.beta(w_lo), p.beta(w_hi), p.beta(np.where(inside, ws, w_lo))])
-    # vertices (t, D) of {t in [t1, t2], t + D in [t3, t4], D >= d_min}
-    t = np.stack([t1, t1, t2, t2, t1, t2, t3 - d_min, t4 - d_min])
-    d = np.stack([t3 - t1, t4 - t1, t3 - t2, t4 - t2, d_min, d_min, d_min, d_min])
-    tol = 1e-12 * np.maximum(1.0, np.abs(t) + np.abs(d))
-    vertex = ((t >= t1 - tol) & (t <= t2 + tol) & (t + d >= t3 - tol) & (t + d <= t4 + tol)
-              & (d >= d_min - tol))  # fmt: skip
-    rel = np.stack([p.rel(w_lo), p.rel(w_hi)])[:, None]
-    value = rel * d - p.g * t  # (2 rate ends, 8 vertices, n): bilinear, extremes at corners
-    return (np.min(betas, axis=0) - p.gap0, np.max(betas, axis=0) - p.gap0,
-            np.min(np.where(vertex, value, np.inf), axis=(0, 1)),
-            np.max(np.where(vertex, value, -np.inf), axis=(0, 1)))  # fmt: skip
+    b_lo, b_hi = p.beta(w_lo), p.beta(w_hi)
+    b_ws = p.beta(np.where(inside, ws, w_lo))
+    linear_lo, linear_hi = _linear_range(p.rel(w_lo), p.rel(w_hi), p.g, t1, t2, t3, t4, d_min)
+    return (np.minimum(np.minimum(b_lo, b_hi), b_ws) - p.gap0,
+            np.maximum(np.maximum(b_lo, b_hi), b_ws) - p.gap0, linear_lo, linear_hi)
+
+
+def _linear_range(rel_lo, rel_hi, g, t1, t2, t3, t4, d_min):
+    """Exact range [rad] of ``rel D - g t`` over ``rel in [rel_lo, rel_hi]`` and the dates
+    ``{t in [t1, t2], t + D in [t3, t4], D >= d_min}`` (``(inf, -inf)`` where empty).
+
+    D >= 0, so the least value takes ``rel_lo`` and the largest ``rel_hi``.  For a rate c
+    and a departure t, the best D is an end of ``[max(t3 - t, d_min), t4 - t]`` by the
+    sign of c; the result is linear in t, or (through ``max``) concave for the largest and
+    convex for the least value with one kink at ``t = t3 - d_min``: its extremes over
+    the departures that can still arrive, ``[t1, min(t2, t4 - d_min)]``, lie at the two
+    ends or at the kink.
+    """
+    t_end = np.minimum(t2, t4 - d_min)
+    tol = 1e-12 * np.maximum(1.0, np.abs(t4) + np.abs(d_min))
+    feasible = t1 <= t_end + tol
+    t_end = np.maximum(t_end, t1)
+    kink = np.minimum(np.maximum(t3 - d_min, t1), t_end)
+    out = []
+    for c, pick in ((rel_lo, np.minimum), (rel_hi, np.maximum)):
+        longest = (c >= 0) if pick is np.maximum else (c < 0)
+        values = [c * np.where(longest, t4 - t, np.maximum(t3 - t, d_min)) - g * t
+                  for t in (t1, kink, t_end)]  # fmt: skip
+        out.append(pick(pick(values[0], values[1]), values[2]))
+    return np.where(feasible, out[0], np.inf), np.where(feasible, out[1], -np.inf)
 
 
 def _empty(p: _Pieces, t1, t2, t3, t4, x, y, t_min):

@@ -18,6 +18,7 @@ from sdc_cvx.physics.low_thrust import (
     leg_phases,
     spiral_raan_change,
 )
+from sdc_cvx.physics.low_thrust_bounds import _linear_range
 from sdc_cvx.physics.transfer import NodeOrbits, hohmann_dv
 
 R = 6378137.0
@@ -238,3 +239,54 @@ def test_spirals_longer_than_the_box_prove_no_leg(table):
     assert legs_floor > 0
     assert np.isinf(slow.box_bound(e, 0.0, 0.0, 0.0, 0.9 * shortest_days, rule="free", j2=J2))
     assert np.isinf(slow.cost_at(e, 0.0, 0.9 * shortest_days, rule="free", j2=J2).cost)
+
+
+@pytest.mark.parametrize("rule", ["table3", "free"])
+def test_boxes_of_departures_and_arrivals_are_never_above_a_leg_inside(table, rule):
+    """Boxes wide in both dates, including ones whose shortest legs the thrust time cuts
+    (arrivals starting before the last departure): the bound is below every scanned leg
+    of any departure of the box that arrives in it."""
+    orbits, i, j, legs = table
+    rng = np.random.default_rng(23)
+    checked = 0
+    for e in rng.permutation(len(i))[:10]:
+        t1 = rng.uniform(0, 100)
+        for width in (0.5, 5.0, 40.0):
+            departures = np.linspace(t1, t1 + width, 21)
+            scans = [scan(orbits, i[e], j[e], t, rule, laps=2, points=4001) for t in departures]
+            first = min(arrive.min() for arrive, _ in scans)
+            for t3 in (first - 1.0, first + 0.3 * width, t1 + 0.5 * width + 30.0):
+                t4 = t3 + rng.choice([1.0, 20.0, 120.0])
+                inside = [dv[(arrive >= t3) & (arrive <= t4) & (arrive >= t)]
+                          for t, (arrive, dv) in zip(departures, scans, strict=True)]
+                cheapest = min((d.min() for d in inside if len(d)), default=np.inf)
+                bound = legs.box_bound(e, t1, t1 + width, t3, t4, rule=rule, j2=J2)
+                assert bound <= cheapest + 1e-9
+                checked += np.isfinite(cheapest)
+    assert checked >= 40
+
+
+def test_the_linear_part_range_is_the_exact_range_over_the_dates():
+    """``rel D - g t`` over rates and the polygon of dates cut by D >= d_min: every sampled
+    point inside the range returned, and its ends reached to the sampling's resolution."""
+    rng = np.random.default_rng(3)
+    for _ in range(300):
+        t1 = rng.uniform(0, 10)
+        t2 = t1 + rng.choice([0.0, rng.uniform(0, 10)])
+        t3 = t1 + rng.uniform(-5, 15)
+        t4 = t3 + rng.choice([0.0, rng.uniform(0, 10)])
+        d_min = rng.uniform(0, 8)
+        r_lo, r_hi = np.sort(rng.normal(0, 1e-3, 2))
+        g = rng.normal(0, 1e-3)
+        t, arrive, rel = np.meshgrid(np.linspace(t1, t2, 201), np.linspace(t3, t4, 201),
+                                     [r_lo, r_hi])  # fmt: skip
+        d = arrive - t
+        ok = d >= d_min
+        lo, hi = _linear_range(r_lo, r_hi, g, t1, t2, t3, t4, d_min)
+        if not ok.any():
+            assert lo == np.inf and hi == -np.inf or t2 + d_min > t4 - 0.1  # empty (or nearly)
+            continue
+        values = (rel * d - g * t)[ok]
+        scale = (abs(r_lo) + abs(r_hi) + abs(g)) * 25 / 200
+        assert lo <= values.min() + 1e-15 and hi >= values.max() - 1e-15
+        assert values.min() - lo <= scale and hi - values.max() <= scale
