@@ -94,6 +94,8 @@ class LegCosts:
     candidate_cost: np.ndarray
     mu: float = MU_EARTH
     model: TransferModel = field(default_factory=lambda: IMPULSIVE)
+    memo: dict = field(default_factory=dict, repr=False, compare=False)
+    """What a transfer model derives once per edge of this table and keeps (its own keys)."""
 
     @classmethod
     def build(cls, origin: NodeOrbits, target: NodeOrbits, a_low: float, a_high: float, *,
@@ -123,6 +125,10 @@ class LegCosts:
         cost = self.cost(edges, choice, np.where(np.isnan(candidates), a_low, candidates))
         object.__setattr__(self, "candidate_cost", np.where(np.isnan(candidates), np.inf, cost))
         return self
+
+    def __getstate__(self):
+        """Pickled without the memo (a worker derives again what it needs)."""
+        return {**self.__dict__, "memo": {}}
 
     def inclination(self, e, c):
         """Drift inclination [rad] of choice ``c`` (0: origin's, 1: target's) for edge ``e``."""
