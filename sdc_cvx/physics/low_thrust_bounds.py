@@ -244,14 +244,14 @@ def _box_bound(legs, e, t1, t2, t3, t4, cap, accel, rule, j2, t_min):
         settle(index[over], floor[over])
         return ~over
 
-    # a piece whose cheap end may fly is exact at once
+    # a piece proven empty as a whole holds no leg (most pieces of most boxes)
     live = np.flatnonzero(p.allowed.ravel())
+    live = live[~_empty(flat.take(live), *(v[live] for v in box), w0[live], w1[live], t_min)]
+    # a piece whose cheap end may fly is exact at once
     at_end = ~_empty(flat.take(live), *(v[live] for v in box), w0[live], w0[live], t_min)
     settle(live[at_end], flat.cost_of(live[at_end], w0[live[at_end]]))
     live = live[~at_end]
     live = live[undecided(live, flat.cost_of(live, w0[live]))]
-    # a piece proven empty as a whole holds no leg
-    live = live[~_empty(flat.take(live), *(v[live] for v in box), w0[live], w1[live], t_min)]
     # frontier search: [w0, pos] is proven empty.  Each step proposes 0.9 of the distance
     # at which phi's enclosure, its parts moving at their present rates, would first reach
     # a multiple of 2 pi (Newton's step); it moves only if the interval proof holds, and
@@ -296,7 +296,9 @@ def _phi_parts(p: Pieces, t1, t2, t3, t4, x, y, t_min):
     # beta at w_lo stands in for the stationary point when it is not inside
     b_lo, b_hi = p.beta(w_lo), p.beta(w_hi)
     b_ws = p.beta(np.where(inside, ws, w_lo))
-    linear_lo, linear_hi = _linear_range(p.rel(w_lo), p.rel(w_hi), p.g, t1, t2, t3, t4, d_min)
+    rel_a, rel_b = p.rel(w_lo), p.rel(w_hi)  # rel is monotone: rising or falling with w
+    linear_lo, linear_hi = _linear_range(np.minimum(rel_a, rel_b), np.maximum(rel_a, rel_b), p.g,
+                                         t1, t2, t3, t4, d_min)  # fmt: skip
     return (np.minimum(np.minimum(b_lo, b_hi), b_ws) - p.gap0,
             np.maximum(np.maximum(b_lo, b_hi), b_ws) - p.gap0, linear_lo, linear_hi)
 

@@ -135,14 +135,16 @@ class PathSchedule:
 
 
 class _Cells:
-    """Date cells of one position: sorted, disjoint ``[lo, hi]`` with stable ids, and the
-    least cost to reach each (``into``) and to end the path from it (``onward``) that the
-    last round's bounds proved (0 before any: no information)."""
+    """Date cells of one position: sorted, disjoint ``[lo, hi]`` with stable ids, the id of
+    the cell each was split from (``parents``: its own if none), and the least cost to
+    reach each (``into``) and to end the path from it (``onward``) that the last round's
+    bounds proved (0 before any: no information)."""
 
-    def __init__(self, lo, hi, ids, next_id, into=None, onward=None):
+    def __init__(self, lo, hi, ids, next_id, into=None, onward=None, parents=None):
         self.lo, self.hi, self.ids, self.next_id = lo, hi, ids, next_id
         self.into = np.zeros(len(lo)) if into is None else into
         self.onward = np.zeros(len(lo)) if onward is None else onward
+        self.parents = ids if parents is None else parents
 
     @classmethod
     def uniform(cls, start, stop, count, first_id=0):
@@ -160,7 +162,7 @@ class _Cells:
         ``into`` and ``onward`` are this round's bounds of each cell; a part inherits its
         cell's (a part's own are at least as high, the exact ones at least).
         """
-        lo, hi, ids, into_out, onward_out = [], [], [], [], []
+        lo, hi, ids, parents, into_out, onward_out = [], [], [], [], [], []
         next_id = self.next_id
         for k in range(len(self.lo)):
             if not keep[k]:
@@ -170,6 +172,7 @@ class _Cells:
                 lo += list(edges[:-1])
                 hi += list(edges[1:])
                 ids += list(range(next_id, next_id + SPLIT))
+                parents += [self.ids[k]] * SPLIT
                 next_id += SPLIT
                 into_out += [into[k]] * SPLIT
                 onward_out += [onward[k]] * SPLIT
@@ -177,14 +180,20 @@ class _Cells:
                 lo.append(self.lo[k])
                 hi.append(self.hi[k])
                 ids.append(self.ids[k])
+                parents.append(self.ids[k])
                 into_out.append(into[k])
                 onward_out.append(onward[k])
         return _Cells(np.array(lo), np.array(hi), np.array(ids, dtype=int), next_id,
-                      np.array(into_out), np.array(onward_out))  # fmt: skip
+                      np.array(into_out), np.array(onward_out),
+                      np.array(parents, dtype=int))  # fmt: skip
 
 
 class _BoundCache:
-    """Leg box bounds between the cells of two positions, recomputed only for new cells."""
+    """Leg box bounds between the cells of two positions, recomputed only for new cells.
+
+    A new box lies inside the box of its cells' parents, whose bound therefore holds for it
+    too: the box is bounded again only where that bound is below the box's cap.
+    """
 
     def __init__(self):
         self.rows = self.cols = np.empty(0, dtype=int)
@@ -208,12 +217,21 @@ class _BoundCache:
         rr, cc = np.nonzero(~known)
         if len(rr):
             rest = np.maximum(cells_from.into[rr] + cells_to.onward[cc], floor_elsewhere)
-            cap = np.nan_to_num(limit - rest + 1e-6, nan=np.inf)
+            with np.errstate(invalid="ignore"):  # inf - inf: no limit yet
+                cap = np.nan_to_num(limit - rest + 1e-6, nan=np.inf)
+            inherited = np.zeros(len(rr))
+            pr = _positions(self.rows, cells_from.parents[rr])
+            pc = _positions(self.cols, cells_to.parents[cc])
+            has = (pr >= 0) & (pc >= 0)
+            inherited[has] = self.matrix[pr[has], pc[has]]
+            todo = np.flatnonzero(inherited < cap)
+            r, c = rr[todo], cc[todo]
             ops = problem.ops_days[k + 1]
-            out[rr, cc] = problem.legs.box_bound(
-                problem.edges[k], cells_from.lo[rr], cells_from.hi[rr],
-                cells_to.lo[cc] - ops, cells_to.hi[cc] - ops, rule=problem.rule,
-                j2=problem.j2, t_min=problem.tmin_days, cap=cap)  # fmt: skip
+            inherited[todo] = np.maximum(inherited[todo], problem.legs.box_bound(
+                problem.edges[k], cells_from.lo[r], cells_from.hi[r],
+                cells_to.lo[c] - ops, cells_to.hi[c] - ops, rule=problem.rule,
+                j2=problem.j2, t_min=problem.tmin_days, cap=cap[todo]))  # fmt: skip
+            out[rr, cc] = inherited
         self.rows, self.cols, self.matrix = cells_from.ids.copy(), cells_to.ids.copy(), out
         return out
 
