@@ -137,7 +137,7 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
           stop_above_mps: float = np.inf,
           ceiling_mps: float = -np.inf,
           time_limit_s: float | None = None, exclude=(), must_visit=(), seeds=(),
-          known=None) -> Pricing:  # fmt: skip
+          known=None, stop=None) -> Pricing:  # fmt: skip
     """The cheapest missions of ``launch`` with ``prices`` added to the debris' costs.
 
     Parameters
@@ -166,6 +166,8 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     known : dict, optional
         Schedules of this launch's paths certified before (``{nodes: PathSchedule}``):
         not solved again (see ``certify``).
+    stop : callable, optional
+        Asked between the search's steps: True ends it as a time limit would.
 
     Returns
     -------
@@ -189,7 +191,7 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
                      gap_abs_mps=tol_mps, time_limit_s=time_limit_s, seeds=seeds,
                      stop_above_mps=stop_above_mps, ceiling_mps=ceiling_mps,
                      names=nodes.catalog.ids, known=known,
-                     path_tol_rel=max(path_tol_rel, gap_rel / 2))  # fmt: skip
+                     path_tol_rel=max(path_tol_rel, gap_rel / 2), stop=stop)  # fmt: skip
     debris_rows = len(launch.catalog)
     columns = tuple(
         Column(launch.index, c.path, tuple(sorted(k for k in c.path if k < debris_rows)),

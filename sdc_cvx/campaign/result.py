@@ -49,8 +49,9 @@ class CampaignSolution:
         catalog's start is the campaign's plus the launch day).
     total_dv_mps : float
         Sum of the missions' total ΔV [m/s].
-    lower_bound_mps : float
-        No campaign of these missions costs less [m/s].
+    lower_bound_mps : float or None
+        No campaign of these missions costs less [m/s]; at least 0 (every cost is); None
+        when the search stopped before it proved any bound.
     status : RunStatus
         ``optimal`` (within 0.1 %, or 0.01 m/s per mission), ``within_gap`` (within a
         wider requested gap) or ``feasible`` (a limit stopped the search; the gap says
@@ -70,7 +71,7 @@ class CampaignSolution:
     catalog: Catalog
     missions: tuple[Solution, ...]
     total_dv_mps: float
-    lower_bound_mps: float
+    lower_bound_mps: float | None
     status: RunStatus
     greedy: GreedyCampaign
     history: tuple[dict, ...] = ()
@@ -86,12 +87,22 @@ class CampaignSolution:
         return self.status in (RunStatus.OPTIMAL, RunStatus.WITHIN_GAP)
 
     @property
-    def gap_mps(self) -> float:
-        """Plan minus proven lower bound [m/s]."""
+    def bound_known(self) -> bool:
+        """True when a bound above 0 is proven (0 holds for every campaign: no information)."""
+        return self.lower_bound_mps is not None and self.lower_bound_mps > 0
+
+    @property
+    def gap_mps(self) -> float | None:
+        """Plan minus proven lower bound [m/s] (None: no bound yet)."""
+        if self.lower_bound_mps is None:
+            return None
         return max(self.total_dv_mps - self.lower_bound_mps, 0.0)
 
     @property
-    def gap_rel(self) -> float:
+    def gap_rel(self) -> float | None:
+        """The gap relative to the plan [-] (None: no bound yet)."""
+        if self.gap_mps is None:
+            return None
         return self.gap_mps / self.total_dv_mps if self.total_dv_mps > 0 else 0.0
 
     @property
@@ -99,13 +110,19 @@ class CampaignSolution:
         return self.campaign.launch_days
 
     def greedy_gap_rel(self) -> float | None:
-        """How far greedy is above the proven bound, relative to greedy [-]."""
+        """How far greedy is above the proven bound, relative to the bound [-] (None
+        without greedy or a bound above 0)."""
         dv = self.greedy.dv_mps
-        if dv is None or dv <= 0:
+        if dv is None or not self.bound_known:
             return None
-        return max(dv - self.lower_bound_mps, 0.0) / dv
+        return max(dv - self.lower_bound_mps, 0.0) / self.lower_bound_mps
 
     def quality(self) -> str:
+        why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
+        if self.lower_bound_mps is None:
+            return f"{self.status}, no bound yet ({why})"
+        if not self.bound_known:
+            return f"{self.status}, no useful bound yet: 0 m/s ({why})"
         gap = f"gap {self.gap_mps:.2f} m/s, {100 * self.gap_rel:.2f} %"
         if self.status == RunStatus.OPTIMAL:
             return f"optimal ({gap}; lower bound {self.lower_bound_mps:.2f} m/s)"
@@ -115,7 +132,6 @@ class CampaignSolution:
                 f"{100 * self.gap_requested:g} %): gap {self.gap_mps:.2f} m/s, lower bound "
                 f"{self.lower_bound_mps:.2f} m/s"
             )
-        why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
         return f"{self.status}, {gap} ({why}; lower bound {self.lower_bound_mps:.2f} m/s)"
 
     def summary(self) -> str:
@@ -129,8 +145,9 @@ class CampaignSolution:
         lines.append(f"total dV  {self.total_dv_mps:.2f} m/s, {self.quality()}")
         if self.greedy.dv_mps is not None:
             rel = self.greedy_gap_rel()
-            lines.append(f"greedy    {self.greedy.dv_mps:.2f} m/s (one mission at a time; "
-                         f"{100 * rel:.2f} % above the bound)")  # fmt: skip
+            above = "" if rel is None else f"; {100 * rel:.2f} % above the bound"
+            lines.append(f"greedy    {self.greedy.dv_mps:.2f} m/s (one mission at a time"
+                         f"{above})")  # fmt: skip
         else:
             lines.append(f"greedy    none ({self.greedy.why})")
         lines.append(f"search    {self.columns} missions priced into the master, "

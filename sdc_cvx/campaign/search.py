@@ -98,9 +98,10 @@ class _Campaign:
     step (see the module docstring)."""
 
     def __init__(self, catalog: Catalog, campaign: Campaign, solver: SolverOptions,
-                 gap_rel: float, deadline: float, say, run) -> None:  # fmt: skip
+                 gap_rel: float, deadline: float, say, run, stop=None) -> None:  # fmt: skip
         self.catalog, self.campaign, self.solver = catalog, campaign, solver
         self.gap_rel, self.deadline, self.say, self.run = gap_rel, deadline, say, run
+        self.stop = stop or (lambda: False)
         self.launches = Launch.all_of(campaign, catalog)
         index = {k: n for n, k in enumerate(catalog.ids)}
         self.must = tuple(index[k] for k in campaign.must_remove)
@@ -120,8 +121,13 @@ class _Campaign:
         return self.deadline - time.perf_counter()
 
     def out_of_time(self) -> bool:
+        """True once the time limit has passed or the caller asked to stop."""
         left = self.remaining()
-        return left is not None and left <= 0
+        return self.stop() or (left is not None and left <= 0)
+
+    def limit_reached(self) -> str:
+        """What stopped the search: the caller (Ctrl-C) or the time limit."""
+        return "interrupted" if self.stop() else "time limit reached"
 
     def allowed(self) -> float:
         return max(self.gap_rel * abs(self.upper), PATH_TOL_MPS * len(self.launches))
@@ -131,13 +137,18 @@ class _Campaign:
             1 + 1e-9))  # fmt: skip
 
     def record(self, step: str, lp_value=None) -> None:
+        lower = shown_bound(self.lower)
         self.history.append(dict(step=step, seconds=time.perf_counter() - self.clock,
-                                 lower_mps=self.lower, upper_mps=self.upper,
+                                 lower_mps=lower, upper_mps=self.upper,
                                  lp_mps=lp_value, columns=len(self.pool),
                                  pricings=self.pricings))  # fmt: skip
-        gap = self.upper - self.lower
-        self.say(f"  {step}: plan {self.upper:.2f} m/s, bound {self.lower:.2f} m/s, gap "
-                 f"{gap:.2f} m/s, {len(self.pool)} columns, {self.pricings} pricings")  # fmt: skip
+        plan = f"{self.upper:.2f} m/s" if np.isfinite(self.upper) else "none yet"
+        if lower is None or lower <= 0:
+            bound = "no useful bound yet" if lower is not None else "no bound yet"
+        else:
+            bound = f"bound {lower:.2f} m/s, gap {self.upper - lower:.2f} m/s"
+        self.say(f"  {step}: plan {plan}, {bound}, {len(self.pool)} columns, "
+                 f"{self.pricings} pricings")  # fmt: skip
 
     def price_all(self, tasks) -> list[Pricing]:
         """Run the pricing ``tasks`` (launch, keyword arguments) where they run, each with
@@ -247,8 +258,8 @@ class _Campaign:
                     "mission (tmax_days), more candidates"
                 )
             if self.within() or solved or self.out_of_time() or new == 0:
-                if self.out_of_time():
-                    self.notes.append("time limit reached during column generation")
+                if self.out_of_time() and not self.within():
+                    self.notes.append(f"{self.limit_reached()} during column generation")
                 elif new == 0 and not solved and not self.within():
                     self.notes.append("column generation stalled: no new column")
                 break
@@ -292,7 +303,7 @@ class _Campaign:
                 )
             self.lower = max(self.lower, min(lower.value, self.upper))
         else:
-            self.notes.append("time limit reached while closing the gap")
+            self.notes.append(f"{self.limit_reached()} while closing the gap")
         self.record(f"closing ({new} new columns)")
 
     # ------------------------------------------------------------------ words
@@ -328,7 +339,8 @@ def _infeasible_launch(launch: Launch) -> str:
 def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions | None = None,
                    gap: float = DEFAULT_GAP_REL, time_limit_s: float | None = None,
                    workers: int | None = None, scheduler=None, executor=None,
-                   log: Callable[[str], None] | None = None) -> CampaignSolution:  # fmt: skip
+                   log: Callable[[str], None] | None = None,
+                   stop: Callable[[], bool] | None = None) -> CampaignSolution:  # fmt: skip
     """The cheapest campaign of ``campaign``'s missions over ``catalog``, with its bound.
 
     Parameters
@@ -355,6 +367,10 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     log : callable, optional
         Receives one line per step (each launch, the greedy campaign, each round's
         LP value, plan, bound and gap).
+    stop : callable, optional
+        Asked between steps (and by a pricing run in this process, between its own):
+        True ends the search with the best campaign so far and its gap, status
+        ``feasible`` (the command line's Ctrl-C).
 
     Returns
     -------
@@ -380,13 +396,13 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     say = log or (lambda line: None)
     launches = len(campaign)
     inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
-    with _pricing_executor(inline, executor, scheduler, workers, launches) as run:
-        search = _Campaign(catalog, campaign, solver, gap, deadline, say, run)
+    with _pricing_executor(inline, executor, scheduler, workers, launches, stop) as run:
+        search = _Campaign(catalog, campaign, solver, gap, deadline, say, run, stop)
         alone = search.launches_alone()
         greedy = search.greedy(alone)
         search.master_plan()
         if search.plan is None and greedy.dv_mps is None and search.out_of_time():
-            raise SolverFailure("the time limit came before any campaign was found")
+            raise SolverFailure(f"{search.limit_reached()} before any campaign was found")
         estimate = search.upper if np.isfinite(search.upper) else sum(
             p.upper_mps for p in alone)  # fmt: skip
         search.tol = max(PATH_TOL_MPS, gap * estimate / (4 * launches))
@@ -407,13 +423,14 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
 class _pricing_executor:
     """``run(tasks) -> results``: the pricing tasks in this process, or on an executor."""
 
-    def __init__(self, inline, executor, scheduler, workers, pending):
-        self.inline = inline
+    def __init__(self, inline, executor, scheduler, workers, pending, stop=None):
+        self.inline, self.stop = inline, stop
         self.context = None if inline else open_executor(executor, scheduler, workers, pending)
 
     def __enter__(self):
         if self.inline:
-            return lambda tasks: [price(launch, **kwargs) for launch, kwargs in tasks]
+            return lambda tasks: [price(launch, stop=self.stop, **kwargs)
+                                  for launch, kwargs in tasks]  # fmt: skip
         pool = self.context.__enter__()
 
         def run(tasks):
@@ -426,6 +443,13 @@ class _pricing_executor:
         if self.context is not None:
             return self.context.__exit__(*exc)
         return False
+
+
+def shown_bound(lower: float) -> float | None:
+    """The bound as reported [m/s]: at least 0 (every mission's ΔV is, so 0 is always a
+    bound, and an early master LP, priced against artificial columns, may prove less);
+    None while none is proven (``-inf``)."""
+    return max(float(lower), 0.0) if np.isfinite(lower) else None
 
 
 def _status(search: _Campaign) -> RunStatus:
@@ -447,7 +471,7 @@ def _solution(search: _Campaign, greedy: GreedyCampaign, seconds: float) -> Camp
         catalog=search.catalog,
         missions=missions,
         total_dv_mps=float(sum(m.total_dv_mps for m in missions)),
-        lower_bound_mps=float(min(search.lower, search.upper)),
+        lower_bound_mps=shown_bound(min(search.lower, search.upper)),
         status=status,
         greedy=GreedyCampaign(greedy.dv_mps, greedy.missions, greedy.why, greedy_paths),
         history=tuple(search.history),

@@ -20,7 +20,7 @@ from .exits import (
     interrupted_exit,
 )
 from .options import out_option, parallel_options
-from .progress import RunProgress, open_progress_log
+from .progress import RunProgress, interruptible, open_progress_log
 from .reading import build_scenario, check_backend, read_catalog, select_candidates
 
 
@@ -109,9 +109,11 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         steps.say(header, show=False)
         steps.set_phase("campaign: each launch alone, then the greedy campaign")
         try:
-            solution = solve_campaign(catalog, campaign, solver=scenario.solver, gap=gap,
-                                      time_limit_s=time_limit_s, workers=workers,
-                                      scheduler=scheduler, log=steps.search_step)  # fmt: skip
+            with interruptible(steps, "certified") as stop:
+                solution = solve_campaign(catalog, campaign, solver=scenario.solver, gap=gap,
+                                          time_limit_s=time_limit_s, workers=workers,
+                                          scheduler=scheduler, log=steps.search_step,
+                                          stop=stop)  # fmt: skip
         except MissionInfeasible as err:
             steps.say(f"infeasible: {err}")
             try:

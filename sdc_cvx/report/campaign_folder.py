@@ -28,7 +28,7 @@ import re
 from pathlib import Path
 
 from .atomic import write_atomic
-from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_staged
+from .run_folder import CSV_FLOAT_FORMAT, RUN_FOLDER_FILES, _write_files, write_staged
 
 CAMPAIGN_FOLDER_MARKERS = ("campaign.json", "campaign.log", "missions.csv")
 """A folder holding one of these is an earlier campaign folder, which is replaced."""
@@ -38,16 +38,41 @@ KIND = "campaign folder"
 
 
 class _CampaignFiles:
-    """The names a campaign folder may hold (an earlier one holding any other name, a
-    file of the user's, is refused rather than replaced)."""
+    """What a campaign folder may hold: its files, and the mission folders its
+    ``campaign.json`` lists, each holding only run-folder files.  An earlier campaign
+    folder holding anything else (a file of the user's, in it or in a mission folder, or a
+    mission folder it does not list) is refused rather than replaced."""
 
     names = frozenset(
         {"campaign.json", "campaign.log", "missions.csv", "history.csv", "scenario.toml"}
         | {f"{name}.{ext}" for name in CAMPAIGN_FIGURE_NAMES for ext in ("png", "svg", "pdf")}
     )
 
-    def __contains__(self, name: str) -> bool:
-        return name in self.names or re.fullmatch(r"mission_\d{2,}", name) is not None
+    def foreign(self, folder: Path) -> list[str]:
+        """Paths in ``folder`` (relative to it) that sdc_cvx did not write."""
+        listed = _listed_missions(folder)
+        out = []
+        for path in sorted(folder.iterdir()):
+            if path.name in self.names and path.is_file():
+                continue
+            ours = (re.fullmatch(r"mission_\d{2,}", path.name) is not None and path.is_dir()
+                    and (listed is None or path.name in listed))  # fmt: skip
+            if not ours:
+                out.append(path.name)
+                continue
+            out += [f"{path.name}/{inner.name}" for inner in sorted(path.iterdir())
+                    if inner.name not in RUN_FOLDER_FILES or not inner.is_file()]  # fmt: skip
+        return out
+
+
+def _listed_missions(folder: Path) -> set[str] | None:
+    """The mission folders an earlier ``campaign.json`` lists (None if it cannot be read:
+    then any ``mission_NN`` folder of run-folder files counts as one)."""
+    try:
+        data = json.loads((folder / "campaign.json").read_text(encoding="utf-8"))
+        return {str(m["folder"]) for m in data.get("missions") or []}
+    except (OSError, ValueError, TypeError, KeyError, AttributeError):
+        return None
 
 
 CAMPAIGN_FOLDER_FILES = _CampaignFiles()

@@ -140,8 +140,10 @@ def plot_dv(solution) -> Figure:
     ax.set_ylabel("ΔV [m/s]")
     greedy_text = (f"; greedy {solution.greedy.dv_mps:.1f} m/s"
                    if solution.greedy.dv_mps is not None else "")  # fmt: skip
-    ax.set_title(f"ΔV per mission: total {solution.total_dv_mps:.1f} m/s (bound "
-                 f"{solution.lower_bound_mps:.1f}){greedy_text}")  # fmt: skip
+    bound = (f"bound {solution.lower_bound_mps:.1f}" if solution.bound_known
+             else "no useful bound yet")  # fmt: skip
+    ax.set_title(f"ΔV per mission: total {solution.total_dv_mps:.1f} m/s ({bound})"
+                 f"{greedy_text}")  # fmt: skip
     ax.legend(fontsize=8)
     ax.grid(axis="y", alpha=0.3)
     return fig
@@ -157,7 +159,7 @@ def plot_bound(solution) -> Figure:
     lower = np.array([r["lower_mps"] if r["lower_mps"] is not None else np.nan for r in rows],
                      dtype=float)  # fmt: skip
     upper[~np.isfinite(upper)] = np.nan
-    lower[~np.isfinite(lower)] = np.nan
+    lower[~(np.isfinite(lower) & (lower > 0))] = np.nan  # 0 bounds every campaign: no news
     ax.step(t, upper, where="post", marker="o", color="#08519c", label="best campaign (plan)")
     ax.step(t, lower, where="post", marker="s", color="#d62728", label="proven lower bound")
     if solution.greedy.dv_mps is not None:
@@ -174,8 +176,9 @@ def plot_bound(solution) -> Figure:
         ax.set_ylim(finite.min() - 0.1 * span, top + 0.1 * span)
     ax.set_xlabel("elapsed [s]")
     ax.set_ylabel("campaign ΔV [m/s]")
-    ax.set_title(f"Bound and plan: {solution.status}, gap {solution.gap_mps:.2f} m/s "
-                 f"({100 * solution.gap_rel:.2f} %)")  # fmt: skip
+    gap = (f"gap {solution.gap_mps:.2f} m/s ({100 * solution.gap_rel:.2f} %)"
+           if solution.bound_known else "no useful bound yet")  # fmt: skip
+    ax.set_title(f"Bound and plan: {solution.status}, {gap}")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return fig

@@ -81,6 +81,18 @@ def real_folder(folder: Path | str) -> Path:
     return Path(os.path.realpath(folder)) if folder.is_symlink() else folder
 
 
+def foreign_names(folder: Path, files) -> list[str]:
+    """What an earlier folder holds that sdc_cvx did not write (paths relative to it).
+
+    ``files`` names what such a folder may hold, as files; a container with its own
+    ``foreign(folder)`` (a campaign folder's, whose mission folders are looked into)
+    answers for itself.
+    """
+    if hasattr(files, "foreign"):
+        return files.foreign(folder)
+    return sorted(p.name for p in folder.iterdir() if p.name not in files or not p.is_file())
+
+
 def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
                        files=RUN_FOLDER_FILES, kind: str = "run folder") -> str | None:  # fmt: skip
     """Why ``folder`` cannot take a run folder, or None (checked before any solve).
@@ -115,7 +127,7 @@ def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
                 f"{', '.join(markers)}); choose a new or empty folder (an earlier "
                 f"{kind} is replaced whole)"
             )
-        foreign = sorted(p.name for p in folder.iterdir() if p.name not in files)
+        foreign = foreign_names(folder, files)
         if foreign:
             more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
             shown = ", ".join(foreign[:5]) + more

@@ -1,0 +1,147 @@
+"""A campaign stopped early keeps its answer and says only what is known (issue 28, part 1).
+
+Stopped by the caller (``stop``: the command line's Ctrl-C) or before any bound: the best
+campaign in hand is returned, ``feasible``, with its gap or no bound at all, and its
+folder and ``campaign.json`` are written (a bound not yet known is ``null``).
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from sdc_cvx import Mission
+from sdc_cvx.campaign.result import CampaignSolution
+from sdc_cvx.campaign.search import shown_bound, solve_campaign
+from sdc_cvx.inputs.campaign import Campaign
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.solution import RunStatus
+from tests.conftest import REPO, as_terminal_job
+
+
+def stop_after(line: str, lines: list):
+    """A ``stop`` that turns True once the search's log has said ``line``."""
+    return lambda: any(line in said for said in lines)
+
+
+@pytest.fixture(scope="module")
+def catalog():
+    return sso_catalog(9, seed=7, inclination_spread_deg=0.8)
+
+
+def test_a_campaign_stopped_after_greedy_keeps_the_greedy_campaign(catalog, tmp_path):
+    lines: list[str] = []
+    campaign = Campaign.of([0.0, 365.25], Mission(n=3))
+    answer = solve_campaign(catalog, campaign, workers=1, log=lines.append,
+                            stop=stop_after("launches alone and greedy", lines))  # fmt: skip
+    full = solve_campaign(catalog, campaign, workers=1)
+    assert answer.status == RunStatus.FEASIBLE and not answer.certified
+    assert any("interrupted" in note for note in answer.notes)
+    assert answer.total_dv_mps >= full.total_dv_mps - 1e-6  # a campaign that flies
+    # what is said of the bound is true: at most the optimum (or none)
+    assert answer.lower_bound_mps is None or answer.lower_bound_mps <= full.total_dv_mps + 1e-6
+    answer.save(tmp_path / "c", formats=())
+    data = json.loads((tmp_path / "c" / "campaign.json").read_text())
+    assert data["status"] == "feasible" and data["total_dv_mps"] == pytest.approx(
+        answer.total_dv_mps)  # fmt: skip
+
+
+def test_no_bound_is_null_and_a_poor_one_is_not_reported_below_zero(catalog):
+    campaign = Campaign.of([0.0, 365.25], Mission(n=3))
+    full = solve_campaign(catalog, campaign, workers=1)
+    kwargs = {name: getattr(full, name) for name in CampaignSolution.__dataclass_fields__}
+    unknown = CampaignSolution(**{**kwargs, "lower_bound_mps": shown_bound(-float("inf")),
+                                  "status": RunStatus.FEASIBLE})  # fmt: skip
+    data = json.loads(unknown.to_json())  # -inf once crashed the JSON writer
+    assert data["lower_bound_mps"] is None and data["gap_mps"] is None and data["gap_rel"] is None
+    assert data["greedy_gap_rel"] is None
+    assert "no bound yet" in unknown.summary()
+    poor = CampaignSolution(**{**kwargs, "lower_bound_mps": shown_bound(-99253.56),
+                               "status": RunStatus.FEASIBLE})  # fmt: skip
+    assert poor.lower_bound_mps == 0.0  # every mission costs at least 0
+    assert "no useful bound yet" in poor.summary() and "-99" not in poor.summary()
+    figures = poor.plot()
+    low, _ = figures["bound"].axes[0].get_ylim()
+    assert low > -0.5 * full.total_dv_mps  # no axis down to the artificial bound
+
+
+def test_greedy_is_measured_above_the_bound_relative_to_the_bound(catalog):
+    full = solve_campaign(catalog, Campaign.of([0.0, 365.25], Mission(n=3)), workers=1)
+    greedy, bound = full.greedy.dv_mps, full.lower_bound_mps
+    assert full.greedy_gap_rel() == pytest.approx((greedy - bound) / bound)
+    assert f"{100 * (greedy - bound) / bound:.2f} % above the bound" in full.summary()
+
+
+SCENARIO = """
+[catalog]
+path = "{catalog}"
+
+[mission]
+n = 3
+tmax_days = 365.25
+
+[campaign]
+launch_days = [0, 365.25, 730.5]
+"""
+
+
+@pytest.mark.slow
+def test_ctrl_c_on_campaign_keeps_the_campaign_in_hand(tmp_path, catalog):
+    """Through a real process: one Ctrl-C once a campaign is held ends the search at its
+    next step; the folder is written, feasible with its gap (or optimal if it got there)."""
+    csv = tmp_path / "debris.csv"
+    catalog.frame[["id", "a_km", "e", "inc_deg", "raan_deg"]].to_csv(csv, index=False)
+    scenario = tmp_path / "c.toml"
+    scenario.write_text(SCENARIO.format(catalog=csv))
+    out = tmp_path / "out"
+    run = subprocess.Popen([sys.executable, "-m", "sdc_cvx", "campaign", str(scenario),
+                            "--out", str(out), "--workers", "1"], cwd=tmp_path,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                           env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"},
+                           preexec_fn=as_terminal_job)  # fmt: skip
+    live = tmp_path / "out.log"
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and run.poll() is None:
+        if live.exists() and "launches alone and greedy" in live.read_text():
+            break
+        time.sleep(0.02)
+    run.send_signal(signal.SIGINT)
+    stdout, stderr = run.communicate(timeout=600)
+    assert run.returncode == 0, stderr
+    data = json.loads((out / "campaign.json").read_text())
+    assert data["status"] in ("feasible", "optimal") and len(data["missions"]) == 3
+    if data["status"] == "feasible":
+        assert any("interrupted" in note for note in data["notes"])
+        assert "interrupted" in stdout
+    assert not live.exists()
+
+
+def test_an_earlier_campaign_folder_with_files_of_the_user_is_refused(catalog, tmp_path):
+    """Files of the user inside a mission folder, or a mission folder the earlier
+    campaign.json does not list, are never deleted by a new campaign into that folder."""
+    from sdc_cvx.report.campaign_folder import campaign_folder_problem
+
+    answer = solve_campaign(catalog, Campaign.of([0.0, 365.25], Mission(n=3)), workers=1)
+    folder = tmp_path / "out"
+    answer.save(folder, formats=())
+    assert campaign_folder_problem(folder) is None  # an earlier campaign folder: replaced
+    answer.save(folder, formats=())
+    (folder / "mission_01" / "notes.txt").write_text("keep")
+    problem = campaign_folder_problem(folder)
+    assert problem is not None and "mission_01/notes.txt" in problem
+    with pytest.raises(FileExistsError):
+        answer.save(folder, formats=())
+    assert (folder / "mission_01" / "notes.txt").read_text() == "keep"
+    (folder / "mission_01" / "notes.txt").unlink()
+    (folder / "mission_09").mkdir()
+    (folder / "mission_09" / "solution.json").write_text("{}")  # not one of the campaign's
+    problem = campaign_folder_problem(folder)
+    assert problem is not None and "mission_09" in problem
+    with pytest.raises(FileExistsError):
+        answer.save(folder, formats=())
+    assert (folder / "mission_09" / "solution.json").read_text() == "{}"
