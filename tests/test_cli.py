@@ -300,6 +300,24 @@ def test_sweep_command_writes_one_row_per_scenario(tmp_path):
     assert (solved["gap_rel"] <= 1e-3).all() and solved["certified"].all()
 
 
+@pytest.mark.slow
+def test_a_sweep_where_nothing_is_solved_is_not_a_success(tmp_path):
+    """Every scenario infeasible: exit 3 and the statuses counted (not exit 0); its float
+    parameters without noise in results.csv (0.1 + 0.2, not 0.30000000000000004)."""
+    study = tmp_path / "study.toml"
+    study.write_text('[base.mission]\nn = 3\n[grid]\n"mission.tmax_days" = [5.0, 5.5]\n'
+                     '"mission.deorbit_days" = [0.30000000000000004]\n')  # fmt: skip
+    out = tmp_path / "out"
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "sweep", str(study), "--out",
+                           str(out), "--workers", "1"], capture_output=True, text=True,
+                          timeout=600,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 3, done.stderr
+    assert "no scenario was solved (2 infeasible)" in done.stderr
+    text = (out / "results.csv").read_text()
+    assert "0.30000000000000004" not in text and ",0.3," in text
+
+
 def test_sweep_command_rejects_a_bad_study_before_solving(tmp_path):
     study = tmp_path / "study.toml"
     study.write_text('[grid]\n"mission.tmax" = [300.0]\n')

@@ -140,7 +140,7 @@ class CampaignSolution:
         for k, (day, mission) in enumerate(zip(self.launch_days, self.missions, strict=True)):
             lines.append(
                 f"mission {k + 1:<2d} day {day:8.2f}  {' -> '.join(mission.path):<40} "
-                f"{mission.total_dv_mps:8.2f} m/s  {mission.total_duration_days:6.1f} d"
+                f"{mission.total_dv_mps:8.2f} m/s  {mission.total_duration_days:7.2f} d"
             )
         lines.append(f"total dV  {self.total_dv_mps:.2f} m/s, {self.quality()}")
         if self.greedy.dv_mps is not None:

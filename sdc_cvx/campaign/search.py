@@ -35,12 +35,13 @@ References
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import MissionInfeasible, SolverFailure
+from ..errors import IgnoredOptionWarning, MissionInfeasible, SolverFailure
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
@@ -48,9 +49,9 @@ from ..network.edges import node_orbits
 from ..planner.api import solution_of
 from ..planner.nodes import MissionNodes
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
-from ..study.executors import open_executor
 from .master import solve_ip, solve_lp
-from .pricing import Column, Launch, Pricing, price
+from .pricing import Column, Launch, Pricing
+from .pricing_runs import PricingRuns, check_options, guarded_workers, ignored_options
 from .result import CampaignSolution, GreedyCampaign
 
 DEFAULT_GAP_REL = 1e-3
@@ -390,13 +391,17 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     if not isinstance(campaign, Campaign):
         raise TypeError(f"campaign must be a Campaign, got {type(campaign).__name__}")
     solver = SolverOptions() if solver is None else solver
+    check_options(solver, gap, time_limit_s, workers, scheduler, executor)
+    for message in ignored_options(campaign, solver):
+        warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     campaign.check_candidates(catalog)
+    workers = guarded_workers(workers, scheduler, executor, len(campaign))
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)
     launches = len(campaign)
     inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
-    with _pricing_executor(inline, executor, scheduler, workers, launches, stop) as run:
+    with PricingRuns(inline, executor, scheduler, workers, launches, stop) as run:
         search = _Campaign(catalog, campaign, solver, gap, deadline, say, run, stop)
         alone = search.launches_alone()
         greedy = search.greedy(alone)
@@ -418,31 +423,6 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
             "of missions holds no disjoint set of them): allow more time"
         )
     return _solution(search, greedy, time.perf_counter() - clock)
-
-
-class _pricing_executor:
-    """``run(tasks) -> results``: the pricing tasks in this process, or on an executor."""
-
-    def __init__(self, inline, executor, scheduler, workers, pending, stop=None):
-        self.inline, self.stop = inline, stop
-        self.context = None if inline else open_executor(executor, scheduler, workers, pending)
-
-    def __enter__(self):
-        if self.inline:
-            return lambda tasks: [price(launch, stop=self.stop, **kwargs)
-                                  for launch, kwargs in tasks]  # fmt: skip
-        pool = self.context.__enter__()
-
-        def run(tasks):
-            futures = [pool.submit(price, launch, **kwargs) for launch, kwargs in tasks]
-            return [f.result() for f in futures]
-
-        return run
-
-    def __exit__(self, *exc):
-        if self.context is not None:
-            return self.context.__exit__(*exc)
-        return False
 
 
 def shown_bound(lower: float) -> float | None:

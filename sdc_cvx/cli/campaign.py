@@ -5,11 +5,18 @@ from __future__ import annotations
 import contextlib
 import importlib.util
 import sys
+import warnings
 from pathlib import Path
 
 import click
 
-from ..errors import MissionError, MissionInfeasible, SolverFailure, SweepError
+from ..errors import (
+    IgnoredOptionWarning,
+    MissionError,
+    MissionInfeasible,
+    SolverFailure,
+    SweepError,
+)
 from .exits import (
     INPUT_ERROR,
     INTERRUPTED,
@@ -54,6 +61,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     and one run folder per mission.  Exit codes: 2 invalid input (nothing written),
     3 infeasible campaign (campaign.json says why), 4 solver failure.
     """
+    from ..campaign.pricing_runs import ignored_options
     from ..campaign.search import solve_campaign
     from ..report.campaign_folder import (
         campaign_folder_problem,
@@ -108,8 +116,12 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     with RunProgress(show_progress, live_log=live_log, stream=stream, made=made) as steps:
         steps.say(header, show=False)
         steps.set_phase("campaign: each launch alone, then the greedy campaign")
+        for message in ignored_options(campaign, scenario.solver):  # said once, up front
+            click.echo(f"warning: {message}", err=True)
+            steps.say(f"warning: {message}", show=False)
         try:
-            with interruptible(steps, "certified") as stop:
+            with warnings.catch_warnings(), interruptible(steps, "certified") as stop:
+                warnings.simplefilter("ignore", IgnoredOptionWarning)
                 solution = solve_campaign(catalog, campaign, solver=scenario.solver, gap=gap,
                                           time_limit_s=time_limit_s, workers=workers,
                                           scheduler=scheduler, log=steps.search_step,

@@ -132,6 +132,10 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
                               names, types, strict),
     )  # fmt: skip
+    if scenario.campaign is not None:
+        click.echo(f"warning: {scenario_file} has a [campaign] table: `run` plans the one "
+                   "mission of its [mission] table; `python -m sdc_cvx campaign "
+                   f"{scenario_file}` plans the campaign", err=True)  # fmt: skip
     if out_dir is not None:  # before the solve: a bad --out must not cost a solve
         problem = out_folder_problem(Path(out_dir))
         if problem is not None:

@@ -9,7 +9,7 @@ from pathlib import Path
 import click
 
 from ..errors import ScenarioError, SweepError
-from .exits import INPUT_ERROR, SOLVER_FAILED, SYSTEM_ERRNOS, fail, interrupted_exit
+from .exits import INFEASIBLE, INPUT_ERROR, SOLVER_FAILED, SYSTEM_ERRNOS, fail, interrupted_exit
 from .options import out_option, parallel_options
 
 
@@ -69,3 +69,9 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     done = results["status"].isin(SOLVED_STATUSES)
     click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
                f"{folder}/results.csv")  # fmt: skip
+    if len(results) and not done.any():  # nothing solved is not a success
+        counts = results["status"].value_counts()
+        said = ", ".join(f"{count} {status}" for status, count in counts.items())
+        infeasible = set(counts.index) == {"infeasible"}
+        fail(f"no scenario was solved ({said}): see the error column of {folder}/results.csv",
+             INFEASIBLE if infeasible else SOLVER_FAILED)  # fmt: skip

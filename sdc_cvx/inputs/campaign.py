@@ -26,9 +26,12 @@ from .mission import MAX_TMAX_DAYS, Mission
 
 DEFAULT_PERIOD_DAYS = 365.25
 """Days between two launches of ``Campaign.yearly`` (one a year)."""
-MAX_LAUNCH_DAY = MAX_TMAX_DAYS
-"""The last launch day allowed [days after the start]: 10 years (the model leaves out
-drag and the debris' own decay, which change the orbits over longer spans)."""
+MAX_CAMPAIGN_DAYS = MAX_TMAX_DAYS
+"""The last day a campaign may fly [days after the start]: 10 years (the model leaves out
+drag and the debris' own decay, which change the orbits over longer spans); a mission's
+launch day plus its ``tmax_days`` stays within it, as a single mission's ``tmax_days`` does."""
+MAX_LAUNCH_DAY = MAX_CAMPAIGN_DAYS
+"""The last launch day allowed [days after the start]."""
 
 
 @dataclass(frozen=True)
@@ -51,7 +54,8 @@ class Campaign:
     Raises
     ------
     MissionError
-        Launch days not increasing, out of [0, 10 years], a count that does not match,
+        Launch days not increasing, out of [0, 10 years], a mission ending after 10
+        years (launch day plus ``tmax_days``), a count that does not match,
         or a mission option that a campaign cannot honour per mission (``must_include``
         and ``first``: a debris is removed once; use ``must_remove``).
     """
@@ -102,6 +106,13 @@ class Campaign:
                 )
             if mission.first is not None:
                 yield f"mission {k}: first cannot be set in a campaign (use injection)"
+            if k <= len(days) and days[k - 1] + mission.tmax_days > MAX_CAMPAIGN_DAYS:
+                yield (
+                    f"mission {k} ends by day {days[k - 1] + mission.tmax_days:g} (launch "
+                    f"day {days[k - 1]:g} + tmax_days {mission.tmax_days:g}), after "
+                    f"{MAX_CAMPAIGN_DAYS:g} days (10 years: the model leaves out drag and "
+                    "decay); launch earlier or shorten the mission"
+                )
         if len(set(self.must_remove)) != len(self.must_remove):
             yield f"must_remove names a debris twice: {list(self.must_remove)}"
 

@@ -204,3 +204,59 @@ def open_executor(executor=None, scheduler=None, workers: int | None = None,
     most ``pending``) whose workers die with this process.  Sweeps and a campaign's
     pricing problems (:mod:`sdc_cvx.campaign`) run on it."""
     return _executor(executor, scheduler, workers, pending)
+
+
+def unguarded_call_site() -> str | None:
+    """``"PATH, line N"`` of the script line that called into sdc_cvx from the top level
+    of a script, outside ``if __name__ == "__main__":``; None otherwise.
+
+    A local pool's worker processes import the script that started the work (as
+    ``__mp_main__``): a call outside that guard would start the work again in each of
+    them, and they die with a traceback each.  Found by reading the script: the calling
+    line must lie inside such an ``if``.  A function, a notebook cell, an interactive
+    session, ``python -c`` or ``python -m`` is never unguarded.
+    """
+    import ast
+    import inspect
+
+    frame = inspect.currentframe()
+    while frame is not None:
+        module = frame.f_globals.get("__name__")
+        if frame.f_code.co_name == "<module>" and module in ("__main__", "__mp_main__"):
+            break
+        frame = frame.f_back
+    if frame is None:
+        return None  # not called from a script's top level (a function, the CLI)
+    spec = frame.f_globals.get("__spec__")
+    name = getattr(spec, "name", None) or ""
+    if name == "__main__" or name.endswith(".__main__"):
+        return None  # python -m package: workers do not import it again
+    path, line = frame.f_code.co_filename, frame.f_lineno
+    script = frame.f_globals.get("__file__")
+    try:
+        if script is None or not os.path.samefile(script, path):
+            return None  # a notebook cell, an interactive session: nothing to import
+    except OSError:
+        return None
+    try:
+        tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    except (OSError, SyntaxError, ValueError):
+        return None  # no script to read (python -c, an interactive session)
+
+    def guard(node) -> bool:
+        test = node.test
+        return (
+            isinstance(test, ast.Compare) and len(test.comparators) == 1
+            and {type(test.left), type(test.comparators[0])} == {ast.Name, ast.Constant}
+            and {getattr(test.left, "id", None), getattr(test.comparators[0], "id", None)}
+            >= {"__name__"}
+            and "__main__" in {getattr(test.left, "value", None),
+                               getattr(test.comparators[0], "value", None)}
+        )  # fmt: skip
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and guard(node):
+            end = max(getattr(n, "end_lineno", n.lineno) for n in node.body)
+            if node.body[0].lineno <= line <= end:
+                return None
+    return f"{path}, line {line}"

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import pandas as pd
 
+from ..report.run_folder import CSV_FLOAT_FORMAT
 from ..solution import RunStatus
 
 if TYPE_CHECKING:
@@ -97,7 +98,10 @@ def _columns(study: Study) -> list[str]:
 
 def _results_text(study: Study, planned: Sequence[_Planned], rows: Mapping[str, dict]) -> str:
     table = [rows[p.item.key] for p in planned if p.item.key in rows]
-    return pd.DataFrame(table, columns=_columns(study)).to_csv(index=False)
+    frame = pd.DataFrame(table, columns=_columns(study))
+    for column in frame.select_dtypes("float").columns:  # 10 significant digits, as every
+        frame[column] = [float(CSV_FLOAT_FORMAT % v) for v in frame[column]]  # CSV of sdc_cvx
+    return frame.to_csv(index=False)  # (300.0, not 299.9999999999925: still a float)
 
 
 def _missing_to_none(value):

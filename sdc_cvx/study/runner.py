@@ -39,7 +39,7 @@ import pandas as pd
 from ..errors import SweepError
 from ..report.atomic import write_atomic
 from ..report.run_folder import new_run_folder
-from .executors import _executor, _locked
+from .executors import _executor, _locked, unguarded_call_site
 from .figure import plot_sweep
 from .results import (
     FAILURE_STATUSES,
@@ -164,6 +164,12 @@ def run_study(
     problem = sweep_folder_problem(out)
     if problem is not None:
         raise SweepError(problem)
+    campaigns = [item.key for item in study.scenarios if item.scenario.campaign is not None]
+    if campaigns:
+        warnings.warn(f"{len(campaigns)} scenario(s) have a [campaign] table (first "
+                      f"{campaigns[0]}): a sweep plans the one mission of each [mission] "
+                      "table; `python -m sdc_cvx campaign` plans a campaign",
+                      UserWarning, stacklevel=2)  # fmt: skip
     planned = [_plan(item) for item in study.scenarios]
     out.mkdir(parents=True, exist_ok=True)
     with _locked(out):
@@ -236,62 +242,16 @@ def sweep_folder_problem(out: Path) -> str | None:
 
 
 def _check_main_guard() -> None:
-    """Refuse a sweep started at the top level of a script without a main guard.
-
-    The local pool's worker processes import the script that started the sweep (as
-    ``__mp_main__``): a call outside ``if __name__ == "__main__":`` would start the sweep
-    again in each of them, and they die with a traceback each.  Found by reading the
-    script: the calling line must lie inside such an ``if``.
-    """
-    import ast
-    import inspect
-
-    frame = inspect.currentframe()
-    while frame is not None:
-        module = frame.f_globals.get("__name__")
-        if frame.f_code.co_name == "<module>" and module in ("__main__", "__mp_main__"):
-            break
-        frame = frame.f_back
-    if frame is None:
-        return  # not called from a script's top level (a function, a notebook, the CLI)
-    spec = frame.f_globals.get("__spec__")
-    name = getattr(spec, "name", None) or ""
-    if name == "__main__" or name.endswith(".__main__"):
-        return  # python -m package: workers do not import it again (multiprocessing.spawn)
-    path, line = frame.f_code.co_filename, frame.f_lineno
-    script = frame.f_globals.get("__file__")
-    try:
-        if script is None or not os.path.samefile(script, path):
-            return  # a notebook cell or an interactive session: nothing for workers to import
-    except OSError:
-        return
-    try:
-        tree = ast.parse(Path(path).read_text(encoding="utf-8"))
-    except (OSError, SyntaxError, ValueError):
-        return  # no script to read (python -c, an interactive session)
-
-    def guard(node) -> bool:
-        test = node.test
-        return (
-            isinstance(test, ast.Compare) and len(test.comparators) == 1
-            and {type(test.left), type(test.comparators[0])} == {ast.Name, ast.Constant}
-            and {getattr(test.left, "id", None), getattr(test.comparators[0], "id", None)}
-            >= {"__name__"}
-            and "__main__" in {getattr(test.left, "value", None),
-                               getattr(test.comparators[0], "value", None)}
-        )  # fmt: skip
-
-    for node in ast.walk(tree):
-        if isinstance(node, ast.If) and guard(node):
-            end = max(getattr(n, "end_lineno", n.lineno) for n in node.body)
-            if node.body[0].lineno <= line <= end:
-                return
-    raise SweepError(
-        f"{path}, line {line}: the sweep is started at the top level of the script, "
-        'without `if __name__ == "__main__":`; its worker processes import the script '
-        "and would start the sweep again: put the call under that guard (or pass "
-        "executor= or scheduler=)"
-    )
+    """Refuse a sweep started at the top level of a script without a main guard
+    (:func:`~sdc_cvx.study.executors.unguarded_call_site`)."""
+    site = unguarded_call_site()
+    if site is not None:
+        raise SweepError(
+            f"{site}: the sweep is started at the top level of the script, "
+            'without `if __name__ == "__main__":`; its worker processes import the script '
+            "and would start the sweep again: put the call under that guard (or pass "
+            "executor= or scheduler=)"
+        )
 
 
 def _plan(item: StudyScenario) -> _Planned:

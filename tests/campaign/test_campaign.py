@@ -48,6 +48,9 @@ def test_a_later_launch_meets_the_raans_of_its_day():
         (dict(launch_days=[0.0, 365.25], n=[5]), "n has 1 values for 2 launch days"),
         (dict(launch_days=[0.0], must_remove="35"), "list of debris ids"),
         (dict(launch_days=[0.0], n=[1]), "n must be >= 2"),
+        # a mission ending 20 years after the start: launch day + tmax_days past 10 years
+        (dict(launch_days=[3652.5], tmax_days=[3652.5]), r"ends by day 7305 .*after 3652.5"),
+        (dict(launch_days=[0.0, 3600.0]), r"mission 2 ends by day 3965.25"),
     ],
 )
 def test_invalid_campaigns_are_refused(kwargs, message):

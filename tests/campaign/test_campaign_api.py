@@ -1,0 +1,79 @@
+"""``solve_campaign`` from Python: its options checked as the command line checks them, and
+a plain script without a main guard still runs (issue 28, 1.5)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from sdc_cvx import Campaign, Catalog, Mission, solve_campaign
+from sdc_cvx.errors import SdcError
+from tests.conftest import REPO
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    (dict(gap=2), "gap must be"),
+    (dict(gap=-1), "gap must be"),
+    (dict(gap="0.1"), "gap must be"),
+    (dict(workers=0), "workers must be"),
+    (dict(workers="two"), "workers must be"),
+    (dict(workers=True), "workers must be"),
+    (dict(solver={"backend": "HIGHS"}), "solver must be a SolverOptions"),
+    (dict(time_limit_s=-5), "time_limit_s must be"),
+    (dict(workers=2, scheduler="tcp://127.0.0.1:1"), "give one of"),
+])  # fmt: skip
+def test_bad_options_are_refused_with_an_sdc_error(kwargs, words):
+    campaign = Campaign.yearly(2, Mission(n=2))
+    with pytest.raises(SdcError, match=words):
+        solve_campaign(Catalog.paper_case(), campaign, **kwargs)
+
+
+SCRIPT = """
+from sdc_cvx import Campaign, Catalog, Mission, solve_campaign
+
+answer = solve_campaign(Catalog.paper_case(), Campaign.yearly(2, Mission(n=2)), workers=2)
+print("total", round(answer.total_dv_mps, 2), answer.status)
+"""
+
+
+@pytest.mark.slow
+def test_a_script_without_a_main_guard_prices_in_its_own_process(tmp_path):
+    """Its pool's workers would import the script and start the campaign again
+    (BrokenProcessPool): the launches are priced in the script's process, with a warning
+    that says why and how to get the pool back."""
+    script = tmp_path / "plan.py"
+    script.write_text(SCRIPT)
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=600,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "total" in done.stdout and "optimal" in done.stdout
+    assert "line 4" in done.stderr and '__name__ == "__main__"' in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_options_a_campaign_does_not_use_are_said_not_silently_dropped():
+    from sdc_cvx import SolverOptions
+    from sdc_cvx.errors import IgnoredOptionWarning
+
+    campaign = Campaign.yearly(2, Mission(n=2, dv_max_mps=800.0))
+    with pytest.warns(IgnoredOptionWarning) as said:
+        solve_campaign(Catalog.paper_case(), campaign, workers=1,
+                       solver=SolverOptions(method="paper"))  # fmt: skip
+    text = " ".join(str(w.message) for w in said)
+    assert "solver.method = 'paper' is ignored" in text
+    assert "mission.dv_max_mps = 800 is ignored" in text
+
+
+@pytest.mark.slow
+def test_run_on_a_campaign_scenario_says_it_plans_one_mission(tmp_path):
+    scenario = tmp_path / "c.toml"
+    scenario.write_text("[mission]\nn = 2\n\n[campaign]\nlaunch_days = [0, 365.25]\n")
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "run", str(scenario), "--quiet",
+                           "--out", "out"], capture_output=True, text=True, cwd=tmp_path,
+                          timeout=600,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "has a [campaign] table" in done.stderr and "sdc_cvx campaign" in done.stderr
