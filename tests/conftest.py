@@ -79,10 +79,3 @@ def crash_backend(monkeypatch):
         monkeypatch.setattr(milp_solve, "solve_milp", solve_milp)
 
     return crash
-
-
-def pytest_collection_modifyitems(items):
-    """The notebooks (run by nbmake) are slow: a few solves each."""
-    for item in items:
-        if item.path.suffix == ".ipynb":
-            item.add_marker(pytest.mark.slow)

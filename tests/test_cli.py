@@ -3,6 +3,7 @@
 import importlib.metadata
 import json
 import os
+import stat
 import subprocess
 import sys
 import time
@@ -562,3 +563,18 @@ def test_a_live_log_that_cannot_be_written_does_not_stop_the_run(tmp_path):
         steps.say("second")
     assert "No space left on device" in steps.log_failed
     assert [line.split(" ", 1)[1] for line in steps.lines] == ["first", "second"]
+
+
+@pytest.mark.parametrize("command", [["run", "--n", "2"],
+                                     ["campaign", str(EXAMPLES / "campaign_gtoc9.toml")]])
+def test_a_named_pipe_beside_out_is_refused_not_read(tmp_path, command):
+    """``r.log`` a named pipe: reading it to see whose it is blocked for ever (issue 28,
+    2.3); it is refused at once, and left as it was."""
+    pipe = tmp_path / "r.log"
+    os.mkfifo(pipe)
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", *command, "--quiet", "--out", "r"],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=120,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 2, done.stderr
+    assert "r.log exists and is not a regular file" in done.stderr
+    assert stat.S_ISFIFO(pipe.stat().st_mode) and not (tmp_path / "r").exists()

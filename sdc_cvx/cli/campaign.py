@@ -67,6 +67,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         campaign_folder_problem,
         write_infeasible_campaign,
     )
+    from ..report.out_folder import new_folder_problem
     from ..report.run_folder import new_run_folder
 
     if scheduler is not None and importlib.util.find_spec("distributed") is None:
@@ -87,6 +88,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         problem = campaign_folder_problem(out_dir)
         if problem is not None:
             fail(f"--out: {problem}")
+    elif (problem := new_folder_problem()) is not None:
+        fail(problem)
     campaign = scenario.campaign
     gap = scenario.solver.gap if gap is None else gap
     time_limit_s = scenario.solver.time_limit_s if time_limit_s is None else time_limit_s

@@ -114,7 +114,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
     """
     from ..network.edges import preoptimize
     from ..planner.api import ignored_options, solve
-    from ..report.run_folder import new_run_folder, out_folder_problem, write_run
+    from ..report.out_folder import new_folder_problem, out_folder_problem
+    from ..report.run_folder import new_run_folder, write_run
     from ..solution import RunStatus
 
     # a plan, but the run did not settle: say so (a new solved status needs no warning)
@@ -140,6 +141,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
         problem = out_folder_problem(Path(out_dir))
         if problem is not None:
             fail(f"--out: {problem}")
+    elif (problem := new_folder_problem()) is not None:
+        fail(problem)
     catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
     mission, solver = scenario.mission, scenario.solver
 

@@ -26,6 +26,7 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     finishes (results.csv and one solution.json per scenario), so --resume after an
     interruption only runs what is missing.
     """
+    from ..report.out_folder import new_folder_problem
     from ..report.run_folder import new_run_folder
     from ..study.results import SOLVED_STATUSES
     from ..study.runner import run_study, sweep_folder_problem
@@ -41,16 +42,16 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     except (ScenarioError, SweepError, OSError) as err:
         fail(str(err))
     if out_dir is not None:
-        out = Path(out_dir)
-        if out.exists() and not out.is_dir():
-            fail(f"--out: {out} is a file, not a folder")
-        if (out / "results.csv").exists() and not resume:
-            fail(f"--out: {out} already holds results.csv: add --resume to finish that "
-                 "sweep, or choose a new folder")  # fmt: skip
-        problem = sweep_folder_problem(out)
+        problem = sweep_folder_problem(Path(out_dir), resume=resume)
         if problem is not None:
             fail(f"--out: {problem}")
-    folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
+    elif (problem := new_folder_problem()) is not None:
+        fail(problem)
+    try:
+        folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
+    except OSError as err:
+        fail(f"cannot create a sweep folder in {Path.cwd()}: {err.strerror or err}; choose "
+             "one with --out")  # fmt: skip
     show = sys.stderr.isatty() if progress is None else progress
     try:
         results = run_study(study, folder, workers=workers, scheduler=scheduler, resume=resume,

@@ -28,7 +28,8 @@ import re
 from pathlib import Path
 
 from .atomic import write_atomic
-from .run_folder import CSV_FLOAT_FORMAT, RUN_FOLDER_FILES, _write_files, write_staged
+from .out_folder import RUN_FOLDER_FILES
+from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_staged
 
 CAMPAIGN_FOLDER_MARKERS = ("campaign.json", "campaign.log", "missions.csv")
 """A folder holding one of these is an earlier campaign folder, which is replaced."""
@@ -68,8 +69,11 @@ class _CampaignFiles:
 def _listed_missions(folder: Path) -> set[str] | None:
     """The mission folders an earlier ``campaign.json`` lists (None if it cannot be read:
     then any ``mission_NN`` folder of run-folder files counts as one)."""
+    path = folder / "campaign.json"
+    if not path.is_file():  # absent, or a pipe that would block the read
+        return None
     try:
-        data = json.loads((folder / "campaign.json").read_text(encoding="utf-8"))
+        data = json.loads(path.read_text(encoding="utf-8"))
         return {str(m["folder"]) for m in data.get("missions") or []}
     except (OSError, ValueError, TypeError, KeyError, AttributeError):
         return None
@@ -183,6 +187,6 @@ def _write_texts(stage: Path, files: dict, scenario_toml: str | None, log: str |
 
 def campaign_folder_problem(folder) -> str | None:
     """Why ``folder`` cannot take a campaign folder, or None (checked before the search)."""
-    from .run_folder import out_folder_problem
+    from .out_folder import out_folder_problem
 
     return out_folder_problem(Path(folder), CAMPAIGN_FOLDER_MARKERS, CAMPAIGN_FOLDER_FILES, KIND)

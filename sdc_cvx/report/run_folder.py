@@ -5,14 +5,10 @@ Every file is written by the one atomic writer, :func:`~sdc_cvx.report.atomic.wr
 
 :func:`write_run` writes a whole run folder aside (a hidden ``.NAME.*.partial`` folder
 next to it) and swaps it in at once, so ``--out`` never shows a mix of two runs: a reader
-(or a kill at any moment) finds the old folder whole or the new one whole.  The policy
-for an existing ``--out`` (:func:`out_folder_problem`): a new or empty folder is used;
-an earlier run folder (one holding ``solution.json``, ``run.log`` or ``legs.csv``) is
-replaced whole, stale files (an old ``.svg``) included; any other non-empty folder is
-refused, so a mistyped ``--out ~`` cannot replace a home folder.  The folder one is in
-(``--out .``) or one of its parents is refused too: swapping it would leave the shell in
-a deleted folder.  A symlinked folder is followed (:func:`real_folder`): the run folder
-is written where the link points and the link stays.
+(or a kill at any moment) finds the old folder whole or the new one whole.  Which
+folders it may replace is :mod:`~sdc_cvx.report.out_folder`'s policy (an earlier run
+folder, stale files included; never a folder with files of the user's).  A symlinked
+folder is followed: the run folder is written where the link points and the link stays.
 
 While ``run`` lasts, its progress goes to a live log ``NAME.log`` beside the folder
 (:func:`open_live_log`), which also locks the folder: a second run into the same folder
@@ -31,6 +27,7 @@ import errno
 import fcntl
 import os
 import shutil
+import stat
 import tempfile
 from collections.abc import Callable
 from datetime import datetime
@@ -43,19 +40,16 @@ import pandas as pd
 from ..inputs.catalog import Catalog
 from ..network.edges import EdgeTable
 from .atomic import file_mode, write_atomic
+from .out_folder import (
+    RUN_FOLDER_FILES,
+    RUN_FOLDER_MARKERS,
+    out_folder_problem,
+    real_folder,
+)
 
 if TYPE_CHECKING:  # solution imports this module (Solution.save): the type is a hint only
     from ..solution import Solution
 
-RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
-"""A folder holding one of these is an earlier run folder, which ``write_run`` replaces."""
-FIGURE_NAMES = ("orbits", "raan", "cost", "iterations")
-RUN_FOLDER_FILES = frozenset(
-    {"solution.json", "run.log", "legs.csv", "iterations.csv", "edges.csv", "scenario.toml"}
-    | {f"{name}.{ext}" for name in FIGURE_NAMES for ext in ("png", "svg", "pdf")}
-)
-"""Every file a run folder may hold: an earlier run folder with any other file in it (a
-file of the user's) is refused, not replaced with it."""
 LIVE_LOG_SIGNATURE = "# sdc_cvx live run log: it moves into the run folder as run.log at the end"
 """First line of a live log: a ``NAME.log`` without it is the user's and never touched."""
 CSV_FLOAT_FORMAT = "%.10g"
@@ -73,75 +67,6 @@ def new_run_folder(parent: Path | str = ".", prefix: str = "sdc_run_") -> Path:
         except FileExistsError:
             continue
     raise FileExistsError(f"cannot create a new run folder under {parent}")
-
-
-def real_folder(folder: Path | str) -> Path:
-    """``folder``, or where it points when it is a symbolic link (followed, not replaced)."""
-    folder = Path(folder)
-    return Path(os.path.realpath(folder)) if folder.is_symlink() else folder
-
-
-def foreign_names(folder: Path, files) -> list[str]:
-    """What an earlier folder holds that sdc_cvx did not write (paths relative to it).
-
-    ``files`` names what such a folder may hold, as files; a container with its own
-    ``foreign(folder)`` (a campaign folder's, whose mission folders are looked into)
-    answers for itself.
-    """
-    if hasattr(files, "foreign"):
-        return files.foreign(folder)
-    return sorted(p.name for p in folder.iterdir() if p.name not in files or not p.is_file())
-
-
-def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
-                       files=RUN_FOLDER_FILES, kind: str = "run folder") -> str | None:  # fmt: skip
-    """Why ``folder`` cannot take a run folder, or None (checked before any solve).
-
-    Refused: a path inside a file, a file, a non-empty folder that is not an earlier
-    run folder (see the module docstring), the current folder or one of its parents,
-    and a place the user cannot write to.  ``markers`` (what makes an earlier folder),
-    ``files`` (what such a folder may hold: a container of names) and ``kind`` (its
-    name in messages) are a campaign folder's when it is one.
-    """
-    given = Path(folder)
-    folder = real_folder(given)
-    resolved = Path(os.path.realpath(folder))
-    here = Path.cwd().resolve()
-    if resolved == here or resolved in here.parents:
-        which = "the current folder" if resolved == here else "a parent of the current folder"
-        return (
-            f"{given} is {which}: a {kind} is swapped in whole, which would remove the "
-            f"folder you are in; choose a new folder, e.g. --out {given / 'run'}"
-        )
-    if folder.exists() and not folder.is_dir():
-        return f"{folder} is a file, not a folder"
-    ancestor = folder if folder.exists() else folder.parent
-    while not ancestor.exists() and ancestor != ancestor.parent:
-        ancestor = ancestor.parent
-    if not ancestor.is_dir():
-        return f"{folder} is inside {ancestor}, which is a file, not a folder"
-    if folder.is_dir() and any(folder.iterdir()):
-        if not any((folder / name).exists() for name in markers):
-            return (
-                f"{folder} is not empty and is not an earlier {kind} (no "
-                f"{', '.join(markers)}); choose a new or empty folder (an earlier "
-                f"{kind} is replaced whole)"
-            )
-        foreign = foreign_names(folder, files)
-        if foreign:
-            more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
-            shown = ", ".join(foreign[:5]) + more
-            return (
-                f"{folder} is an earlier {kind} but also holds {shown}, which sdc_cvx "
-                "did not write; replacing the folder would delete them: move them out or "
-                "choose another folder"
-            )
-        if not os.access(folder.parent, os.W_OK | os.X_OK):
-            return f"cannot replace {folder}: {folder.parent} is not writable"
-    parent = folder.parent if folder.exists() else ancestor
-    if not os.access(parent, os.W_OK | os.X_OK):
-        return f"cannot create {folder}: {parent} is not writable"
-    return None
 
 
 def live_log_path(folder: Path | str) -> Path:
@@ -176,9 +101,15 @@ def open_live_log(folder: Path | str) -> TextIO:
             fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL, file_mode())
             created = True
         except FileExistsError:
-            fd = os.open(path, os.O_RDWR)
+            fd = os.open(path, os.O_RDWR | os.O_NONBLOCK)  # a named pipe must not block
             created = False
         try:
+            if not stat.S_ISREG(os.fstat(fd).st_mode):  # a pipe, a device: never read it
+                raise FileExistsError(
+                    f"{path} exists and is not a regular file (a run into {folder} keeps its "
+                    f"progress there while it lasts); move {path.name} or choose another "
+                    "folder"
+                )
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:

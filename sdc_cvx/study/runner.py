@@ -38,6 +38,7 @@ import pandas as pd
 
 from ..errors import SweepError
 from ..report.atomic import write_atomic
+from ..report.out_folder import name_problem
 from ..report.run_folder import new_run_folder
 from .executors import _executor, _locked, unguarded_call_site
 from .figure import plot_sweep
@@ -226,18 +227,28 @@ SWEEP_FOLDER_MARKERS = ("results.csv", "study.toml", "scenarios")
 """A folder holding one of these is a sweep folder (finished, or killed early)."""
 
 
-def sweep_folder_problem(out: Path) -> str | None:
-    """Why ``out`` cannot take a sweep, or None: a file, or a non-empty folder that is not
-    a sweep folder (an earlier run folder, a folder of the user's) is refused, as ``run``
-    refuses a folder that is not a run folder."""
-    if out.exists() and not out.is_dir():
-        return f"{out} is a file, not a folder"
-    foreign = not any((out / name).exists() for name in SWEEP_FOLDER_MARKERS)
-    if out.is_dir() and any(out.iterdir()) and foreign:
-        return (
-            f"{out} is not empty and is not a sweep folder (no "
-            f"{', '.join(SWEEP_FOLDER_MARKERS)}); choose a new or empty folder"
-        )
+def sweep_folder_problem(out: Path, *, resume: bool = True) -> str | None:
+    """Why ``out`` cannot take a sweep, or None: a file, a name the system refuses, or a
+    non-empty folder that is not a sweep folder (an earlier run folder, a folder of the
+    user's) is refused, as ``run`` refuses a folder that is not a run folder; without
+    ``resume``, so is a sweep folder that already holds results."""
+    out = Path(out)
+    if (problem := name_problem(out)) is not None:
+        return problem
+    try:
+        if out.exists() and not out.is_dir():
+            return f"{out} is a file, not a folder"
+        if (out / "results.csv").exists() and not resume:
+            return (f"{out} already holds results.csv: add --resume to finish that sweep, "
+                    "or choose a new folder")  # fmt: skip
+        foreign = not any((out / name).exists() for name in SWEEP_FOLDER_MARKERS)
+        if out.is_dir() and any(out.iterdir()) and foreign:
+            return (
+                f"{out} is not empty and is not a sweep folder (no "
+                f"{', '.join(SWEEP_FOLDER_MARKERS)}); choose a new or empty folder"
+            )
+    except OSError as err:  # a path the system refuses
+        return f"{out} cannot be used: {err.strerror or err}"
     return None
 
 

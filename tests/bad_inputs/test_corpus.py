@@ -364,6 +364,31 @@ CASES: dict[str, Case] = {
     "sweep-bad-study": Case(
         {"study.toml": 'base = "nowhere.toml"\n'}, ["sweep", "{in}/study.toml"], ["nowhere.toml"]
     ),
+    # ---- issue 28, 2.3: names the system refuses, input nested past any OMM
+    "omm-json-nested-100000-deep": Case(
+        {"debris.json": "[" * 100000 + "]" * 100000},
+        ["run", "--catalog", "{in}/debris.json"],
+        ["nested too deeply"],
+    ),
+    "out-name-over-255-bytes": Case(
+        {"debris.csv": GOOD_CSV},
+        ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "{in}/" + "x" * 300],
+        ["is 300 bytes long", "at most 255 bytes"],
+        names="",
+    ),
+    "campaign-out-name-over-255-bytes": Case(
+        {"c.toml": '[catalog]\npath = "debris.csv"\n[campaign]\nlaunch_days = [0, 365.25]\n'
+                   "[mission]\nn = 2\n"},
+        ["campaign", "{in}/c.toml", "--out", "{in}/" + "é" * 150],
+        ["is 300 bytes long", "at most 255 bytes"],
+        names="",
+    ),
+    "sweep-out-name-over-255-bytes": Case(
+        {"study.toml": STUDY},
+        ["sweep", "{in}/study.toml", "--out", "{in}/" + "x" * 300],
+        ["is 300 bytes long", "at most 255 bytes"],
+        names="",
+    ),
 }
 
 

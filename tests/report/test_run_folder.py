@@ -12,8 +12,9 @@ import pandas as pd
 import pytest
 
 from sdc_cvx.report.atomic import write_atomic
+from sdc_cvx.report.out_folder import out_folder_problem
 from sdc_cvx.report.plots import plot_cost
-from sdc_cvx.report.run_folder import out_folder_problem, write_run
+from sdc_cvx.report.run_folder import write_run
 from sdc_cvx.study.scenario import load
 from tests.conftest import EXAMPLES, REPO
 
@@ -352,8 +353,8 @@ def test_a_second_run_into_a_busy_folder_is_refused_and_a_kill_is_cleaned_at_the
 
 @pytest.mark.slow
 def test_an_earlier_run_folder_holding_a_file_of_the_user_is_refused(solution, tmp_path):
+    from sdc_cvx.report.out_folder import RUN_FOLDER_FILES
     from sdc_cvx.report.plots import FIGURE_NAMES, SUPPORTED_FORMATS
-    from sdc_cvx.report.run_folder import RUN_FOLDER_FILES
 
     # every file a run folder holds is known (else a rerun would refuse its own folder)
     assert {f"{n}.{f}" for n in FIGURE_NAMES for f in SUPPORTED_FORMATS} <= RUN_FOLDER_FILES

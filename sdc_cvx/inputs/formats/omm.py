@@ -163,6 +163,8 @@ def _omm_json(text: str, source: str):
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         _fail(source, f"not valid JSON (line {exc.lineno}, column {exc.colno}: {exc.msg})")
+    except RecursionError:  # lists within lists thousands deep: no OMM file is
+        _fail(source, "JSON nested too deeply to be an OMM list (expected a list of objects)")
     if isinstance(data, dict):
         data = [data]
     if not isinstance(data, list):

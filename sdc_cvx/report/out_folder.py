@@ -1,0 +1,126 @@
+"""Whether a folder may take sdc_cvx's results: the policy for ``--out``, checked before
+any solve (:mod:`sdc_cvx.report.run_folder` writes the folders).
+
+A new or empty folder is used; an earlier folder of sdc_cvx (a run folder: one holding
+``solution.json``, ``run.log`` or ``legs.csv``; a campaign folder: its own markers) is
+replaced whole, unless it also holds something sdc_cvx did not write (a file of the
+user's, which replacing the folder would delete); any other non-empty folder is refused,
+so a mistyped ``--out ~`` cannot replace a home folder.  The folder one is in or one of
+its parents is refused too (swapping it would leave the shell in a deleted folder), and
+so is a name longer than a file system takes.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
+"""A folder holding one of these is an earlier run folder, which ``write_run`` replaces."""
+_FIGURES = ("orbits", "raan", "cost", "iterations")  # report.plots.FIGURE_NAMES, without matplotlib
+RUN_FOLDER_FILES = frozenset(
+    {"solution.json", "run.log", "legs.csv", "iterations.csv", "edges.csv", "scenario.toml"}
+    | {f"{name}.{ext}" for name in _FIGURES for ext in ("png", "svg", "pdf")}
+)
+"""Every file a run folder may hold: an earlier run folder with any other file in it (a
+file of the user's) is refused, not replaced with it."""
+NAME_MAX_BYTES = 255
+"""The longest file or folder name [bytes] of the usual file systems (ext4, xfs, btrfs)."""
+
+
+def name_problem(path: Path | str) -> str | None:
+    """Why a part of ``path`` is too long a name for the file system, or None."""
+    for part in Path(path).parts:
+        size = len(os.fsencode(part))
+        if size > NAME_MAX_BYTES:
+            return (f"the name {part[:40]}... is {size} bytes long; a file or folder name is "
+                    f"at most {NAME_MAX_BYTES} bytes here")  # fmt: skip
+    return None
+
+
+def new_folder_problem(parent: Path | str = ".") -> str | None:
+    """Why a new results folder cannot be made in ``parent`` (no ``--out``), or None:
+    checked before any solve, so that a read-only folder costs no solve."""
+    where = Path(parent).resolve()
+    if not os.access(where, os.W_OK | os.X_OK):
+        return (f"the current folder {where} is not writable, and the results go there "
+                "without --out: choose a folder with --out")  # fmt: skip
+    return None
+
+
+def real_folder(folder: Path | str) -> Path:
+    """``folder``, or where it points when it is a symbolic link (followed, not replaced)."""
+    folder = Path(folder)
+    return Path(os.path.realpath(folder)) if folder.is_symlink() else folder
+
+
+def foreign_names(folder: Path, files) -> list[str]:
+    """What an earlier folder holds that sdc_cvx did not write (paths relative to it).
+
+    ``files`` names what such a folder may hold, as files; a container with its own
+    ``foreign(folder)`` (a campaign folder's, whose mission folders are looked into)
+    answers for itself.
+    """
+    if hasattr(files, "foreign"):
+        return files.foreign(folder)
+    return sorted(p.name for p in folder.iterdir() if p.name not in files or not p.is_file())
+
+
+def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
+                       files=RUN_FOLDER_FILES, kind: str = "run folder") -> str | None:  # fmt: skip
+    """Why ``folder`` cannot take a run folder, or None (checked before any solve).
+
+    Refused: a path inside a file, a file, a non-empty folder that is not an earlier
+    run folder (see the module docstring), the current folder or one of its parents,
+    and a place the user cannot write to.  ``markers`` (what makes an earlier folder),
+    ``files`` (what such a folder may hold: a container of names) and ``kind`` (its
+    name in messages) are a campaign folder's when it is one.
+    """
+    given = Path(folder)
+    if (problem := name_problem(given)) is not None:
+        return problem
+    try:
+        return _out_folder_problem(given, markers, files, kind)
+    except OSError as err:  # a path the system refuses (too long, a loop of links, ...)
+        return f"{given} cannot be used: {err.strerror or err}"
+
+
+def _out_folder_problem(given: Path, markers, files, kind: str) -> str | None:
+    folder = real_folder(given)
+    resolved = Path(os.path.realpath(folder))
+    here = Path.cwd().resolve()
+    if resolved == here or resolved in here.parents:
+        which = "the current folder" if resolved == here else "a parent of the current folder"
+        return (
+            f"{given} is {which}: a {kind} is swapped in whole, which would remove the "
+            f"folder you are in; choose a new folder, e.g. --out {given / 'run'}"
+        )
+    if folder.exists() and not folder.is_dir():
+        return f"{folder} is a file, not a folder"
+    ancestor = folder if folder.exists() else folder.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        return f"{folder} is inside {ancestor}, which is a file, not a folder"
+    if folder.is_dir() and any(folder.iterdir()):
+        if not any((folder / name).exists() for name in markers):
+            return (
+                f"{folder} is not empty and is not an earlier {kind} (no "
+                f"{', '.join(markers)}); choose a new or empty folder (an earlier "
+                f"{kind} is replaced whole)"
+            )
+        foreign = foreign_names(folder, files)
+        if foreign:
+            more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
+            shown = ", ".join(foreign[:5]) + more
+            return (
+                f"{folder} is an earlier {kind} but also holds {shown}, which sdc_cvx "
+                "did not write; replacing the folder would delete them: move them out or "
+                "choose another folder"
+            )
+        if not os.access(folder.parent, os.W_OK | os.X_OK):
+            return f"cannot replace {folder}: {folder.parent} is not writable"
+    parent = folder.parent if folder.exists() else ancestor
+    if not os.access(parent, os.W_OK | os.X_OK):
+        return f"cannot create {folder}: {parent} is not writable"
+    return None
