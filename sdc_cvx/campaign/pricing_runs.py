@@ -3,6 +3,7 @@ executor), and the options that choose it, checked as the command line checks th
 
 from __future__ import annotations
 
+import os
 import warnings
 
 from ..errors import MissionError
@@ -72,6 +73,13 @@ def ignored_options(campaign, solver: SolverOptions) -> list[str]:
                    "it filters the edge table of the paper's method; the certified search "
                    "prices every transfer")  # fmt: skip
     return out
+
+
+def pricings_at_once(workers, scheduler, executor, launches: int) -> int:
+    """Pricing searches this machine runs at once (1 in this process or elsewhere)."""
+    if executor is not None or scheduler is not None:
+        return 1
+    return min(workers or os.cpu_count() or 1, launches)
 
 
 def guarded_workers(workers, scheduler, executor, launches: int):

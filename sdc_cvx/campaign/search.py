@@ -41,17 +41,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import IgnoredOptionWarning, MissionInfeasible, SolverFailure
+from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, SolverFailure
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
 from ..network.edges import node_orbits
 from ..planner.api import solution_of
 from ..planner.nodes import MissionNodes
+from ..planner.size_guard import size_problem
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
 from .master import solve_ip, solve_lp
 from .pricing import Column, Launch, Pricing
-from .pricing_runs import PricingRuns, check_options, guarded_workers, ignored_options
+from .pricing_runs import (
+    PricingRuns,
+    check_options,
+    guarded_workers,
+    ignored_options,
+    pricings_at_once,
+)
 from .result import CampaignSolution, GreedyCampaign
 
 DEFAULT_GAP_REL = 1e-3
@@ -396,6 +403,9 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     campaign.check_candidates(catalog)
     workers = guarded_workers(workers, scheduler, executor, len(campaign))
+    at_once = pricings_at_once(workers, scheduler, executor, len(campaign))
+    if (problem := size_problem(len(catalog), at_once)) is not None:
+        raise MissionError(problem)
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)

@@ -61,8 +61,9 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     and one run folder per mission.  Exit codes: 2 invalid input (nothing written),
     3 infeasible campaign (campaign.json says why), 4 solver failure.
     """
-    from ..campaign.pricing_runs import ignored_options
+    from ..campaign.pricing_runs import ignored_options, pricings_at_once
     from ..campaign.search import solve_campaign
+    from ..planner.size_guard import size_problem
     from ..report.campaign_folder import (
         campaign_folder_problem,
         write_infeasible_campaign,
@@ -104,6 +105,9 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         campaign.check_candidates(catalog)
     except MissionError as err:
         fail(f"{scenario_file}: campaign: {err} (catalog: {catalog.source})")
+    at_once = pricings_at_once(workers, scheduler, None, len(campaign))
+    if (problem := size_problem(len(catalog), at_once)) is not None:
+        fail(f"{catalog.source}: {problem}")
     check_backend(scenario.solver)
     header = (
         f"Campaign of {len(campaign)} missions (launch days "

@@ -114,6 +114,7 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
     """
     from ..network.edges import preoptimize
     from ..planner.api import ignored_options, solve
+    from ..planner.size_guard import size_problem
     from ..report.out_folder import new_folder_problem, out_folder_problem
     from ..report.run_folder import new_run_folder, write_run
     from ..solution import RunStatus
@@ -157,6 +158,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
         where = f"{scenario.source}: " if scenario.source is not None else ""
         problems = "; ".join(f"mission.{problem}" for problem in str(err).split("; "))
         fail(f"{where}{problems} (catalog: {catalog.source})")
+    if (problem := size_problem(len(catalog))) is not None:  # before a MemoryError, minutes on
+        fail(f"{catalog.source}: {problem}")
     check_backend(solver)
 
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet

@@ -30,6 +30,8 @@ from ..physics.transfer import NodeOrbits
 KEPT = "kept"
 TOO_SLOW = "too_slow"
 TOO_COSTLY = "too_costly"
+PREOPT_CHUNK = 16384
+"""Edges pre-optimised at once (the scan's temporaries are a few kB per edge)."""
 
 
 def node_orbits(catalog: Catalog, mission: Mission) -> NodeOrbits:
@@ -114,17 +116,16 @@ def preoptimize(
     i, j = np.nonzero(~np.eye(n, dtype=bool))
     day = np.broadcast_to(np.asarray(departure_day, dtype=float), (n, n))[i, j]
     a_low, a_high = drift_radius_bounds(mission)
-    choice = mission.transfer_model().cheapest_transfer(
-        orbits.take(i),
-        orbits.take(j),
-        day * SECONDS_PER_DAY,
-        mission.preopt_days * SECONDS_PER_DAY,
-        a_low,
-        a_high,
-        inclination=mission.drift_inclination,
-        sides=tuple(float(side) for side in sides),
-        j2=mission.j2,
-    )
+    model = mission.transfer_model()
+    parts = []
+    for start in range(0, max(len(i), 1), PREOPT_CHUNK):  # in chunks: small temporaries
+        rows = slice(start, start + PREOPT_CHUNK)
+        parts.append(model.cheapest_transfer(
+            orbits.take(i[rows]), orbits.take(j[rows]), day[rows] * SECONDS_PER_DAY,
+            mission.preopt_days * SECONDS_PER_DAY, a_low, a_high,
+            inclination=mission.drift_inclination,
+            sides=tuple(float(side) for side in sides), j2=mission.j2))  # fmt: skip
+    choice = type(parts[0])(*(np.concatenate(field) for field in zip(*parts, strict=True)))
     status = np.where(
         ~np.isfinite(choice.dv),
         TOO_SLOW,

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import IgnoredOptionWarning, MissionInfeasible, SolverFailure
+from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, SolverFailure
 from ..inputs.catalog import Catalog
 from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
@@ -34,6 +34,7 @@ from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunSta
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import PathSchedule, schedule_plan
 from .nodes import MissionNodes, make_legs, with_vehicle
+from .size_guard import size_problem
 
 if TYPE_CHECKING:  # the paper's room (and CVXPY) is imported only when its method runs
     from .paper import SequentialSettings
@@ -75,6 +76,9 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
     Raises
     ------
+    MissionError
+        The catalog is too large for this machine's memory (the message gives the
+        figures and the filters that narrow it: :mod:`~sdc_cvx.planner.size_guard`).
     MissionInfeasible
         No path meets the constraints (proven, with the certified method).
     SolverFailure
@@ -85,6 +89,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
     ignored = ignored_options(mission, solver)
     for message in ignored:
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
+    if catalog is not None and (problem := size_problem(len(catalog))) is not None:
+        raise MissionError(problem)  # before anything is built
     if solver.method == "paper":
         from . import paper
 
