@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..errors import MissionError
-from .mission import MAX_TMAX_DAYS, Mission
+from .mission import MAX_TMAX_DAYS, Mission, _ids_text
 
 DEFAULT_PERIOD_DAYS = 365.25
 """Days between two launches of ``Campaign.yearly`` (one a year)."""
@@ -193,7 +193,7 @@ class Campaign:
                 problems.append(f"mission {k} (launch day {self.launch_days[k - 1]:g}): {err}")
         unknown = [d for d in self.must_remove if d not in known]
         if unknown:
-            problems.append(f"must_remove names debris not in the catalog: {', '.join(unknown)}")
+            problems.append(f"must_remove names debris not in the catalog: {_ids_text(unknown)}")
         nowhere = [d for d in self.must_remove if d in known
                    and all(d in m.exclude for m in self.missions)]  # fmt: skip
         if nowhere:

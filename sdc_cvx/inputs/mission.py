@@ -206,7 +206,7 @@ class Mission:
         for name in ("must_include", "exclude"):
             unknown = [k for k in getattr(self, name) if k not in known]
             if unknown:
-                problems.append(f"{name} names debris not in the catalog: {', '.join(unknown)}")
+                problems.append(f"{name} names debris not in the catalog: {_ids_text(unknown)}")
         if self.first is not None and self.first not in known:
             problems.append(f"first = {self.first!r} is not in the catalog")
         available = len(known - set(self.exclude))
@@ -263,7 +263,7 @@ class Mission:
         if both:
             yield f"debris both in must_include and exclude: {', '.join(both)}"
         required = set(self.must_include) | ({self.first} if self.first else set())
-        if isinstance(self.n, numbers.Integral) and len(required) > self.n:
+        if required and isinstance(self.n, numbers.Integral) and len(required) > self.n >= 2:
             yield (
                 f"must_include and first name {len(required)} debris but n = {self.n}: "
                 "raise n or drop some"
@@ -345,3 +345,11 @@ def _vehicle_of(table: dict) -> Vehicle:
 
 def _is_real(value) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _ids_text(ids) -> str:
+    """Debris ids for a message: each as written, quoted where a plain one would hide
+    something (blank, spaces at an end), at most 20 of them."""
+    shown = [repr(k) if (not k.strip() or k != k.strip()) else k for k in ids]
+    more = f" and {len(shown) - 20} more" if len(shown) > 20 else ""
+    return ", ".join(shown[:20]) + more

@@ -259,14 +259,17 @@ def select(
 def summary(kept: Catalog, report: pd.DataFrame) -> str:
     """``"kept K of N candidates (dropped: 3 altitude, 1 eccentricity)"``.
 
-    The counts are per check; a debris failing two checks counts in both.
+    The counts are per check; a debris failing two checks counts in both (the line then
+    says how many were dropped in all).
     """
     total = len(kept) + len(report)
     counts = Counter(check for checks in report.get("checks", []) for check in checks.split(","))
     if not counts:
         return f"kept {len(kept)} of {total} candidates (none dropped)"
     listed = ", ".join(f"{counts[check]} {check}" for check in CHECKS if counts[check])
-    return f"kept {len(kept)} of {total} candidates (dropped: {listed})"
+    overlap = (f"; {len(report)} debris in all, one failing several checks counts in each"
+               if sum(counts.values()) > len(report) else "")  # fmt: skip
+    return f"kept {len(kept)} of {total} candidates (dropped: {listed}{overlap})"
 
 
 def _types(value) -> list[str]:

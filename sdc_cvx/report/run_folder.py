@@ -50,8 +50,11 @@ from .out_folder import (
 if TYPE_CHECKING:  # solution imports this module (Solution.save): the type is a hint only
     from ..solution import Solution
 
-LIVE_LOG_SIGNATURE = "# sdc_cvx live run log: it moves into the run folder as run.log at the end"
+LIVE_LOG_SIGNATURE = "# sdc_cvx live log: it moves into the results folder when the work ends"
 """First line of a live log: a ``NAME.log`` without it is the user's and never touched."""
+_EARLIER_SIGNATURES = (
+    "# sdc_cvx live run log: it moves into the run folder as run.log at the end",
+)  # what earlier versions wrote: their logs, left by a killed run, are taken over too
 CSV_FLOAT_FORMAT = "%.10g"
 """Floats in the CSV files: 10 significant digits (no ``98.30000000000001``)."""
 
@@ -127,7 +130,7 @@ def open_live_log(folder: Path | str) -> TextIO:
             if not created:
                 with os.fdopen(os.dup(fd), "r", encoding="utf-8", errors="replace") as text:
                     first = text.readline().rstrip("\n")
-                if first != LIVE_LOG_SIGNATURE:
+                if first not in (LIVE_LOG_SIGNATURE, *_EARLIER_SIGNATURES):
                     raise FileExistsError(
                         f"{path} exists and is not a log of sdc_cvx: a run into {folder} "
                         f"keeps its progress there while it lasts, and never overwrites a file "

@@ -15,7 +15,7 @@ def read_toml(path: str | os.PathLike, what: str) -> tuple[str, dict]:
     """Text and parsed content of a TOML file, or a ScenarioError saying what is wrong."""
     where = os.fspath(path)
     try:
-        text = Path(path).read_bytes().decode("utf-8")
+        text = Path(path).read_bytes().decode("utf-8-sig")  # a BOM (some editors add it) is no key
     except FileNotFoundError:
         raise ScenarioError.collect(where, ["file not found"]) from None
     except IsADirectoryError:

@@ -1,0 +1,47 @@
+"""Messages a new user met that misled (issue 28, 3.3), each kept right by a test."""
+
+from __future__ import annotations
+
+import pytest
+from click.testing import CliRunner
+
+from sdc_cvx import Catalog, Mission
+from sdc_cvx.cli import main
+from sdc_cvx.errors import MissionError
+from sdc_cvx.study.scenario import Scenario
+
+
+def test_a_scenario_saved_with_a_byte_order_mark_reads(tmp_path):
+    """Some editors start a UTF-8 file with a BOM; TOML read it as 'Invalid statement'."""
+    path = tmp_path / "s.toml"
+    path.write_bytes(b"\xef\xbb\xbf[mission]\nn = 3\n")
+    assert Scenario.load(path).mission.n == 3
+
+
+def test_a_negative_n_is_not_answered_with_advice_about_must_include():
+    with pytest.raises(MissionError) as refused:
+        Mission(n=-3)
+    assert "n must be >= 2" in str(refused.value)
+    assert "must_include" not in str(refused.value)
+
+
+def test_a_blank_id_is_shown_quoted_not_invisible():
+    with pytest.raises(MissionError, match=r"not in the catalog: '', ' 7'"):
+        Mission(n=3, must_include=("", " 7")).check_candidates(Catalog.paper_case())
+
+
+def test_the_live_log_does_not_say_a_campaign_log_becomes_run_log(tmp_path):
+    from sdc_cvx.report.run_folder import LIVE_LOG_SIGNATURE
+
+    assert "run.log" not in LIVE_LOG_SIGNATURE
+
+
+def test_overlapping_drop_reasons_say_they_overlap(tmp_path):
+    path = tmp_path / "d.csv"
+    path.write_text("id,a_km,e,inc_deg,raan_deg\n1,7000,0.001,98,10\n2,7050,0.2,60,40\n"
+                    "3,7100,0.001,98,70\n4,7100,0.001,98,90\n")  # fmt: skip
+    result = CliRunner().invoke(main, ["catalog", str(path), "--inclination-deg", "90", "100",
+                                       "--max-eccentricity", "0.01"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert "kept 3 of 4 candidates (dropped: 1 inclination, 1 eccentricity" in result.stderr
+    assert "; 1 debris in all, one failing several checks counts in each" in result.stderr
