@@ -578,3 +578,32 @@ def test_a_named_pipe_beside_out_is_refused_not_read(tmp_path, command):
     assert done.returncode == 2, done.stderr
     assert "r.log exists and is not a regular file" in done.stderr
     assert stat.S_ISFIFO(pipe.stat().st_mode) and not (tmp_path / "r").exists()
+
+
+SIGINT_DURING_EDGES = """
+import os, signal, sys, time
+import sdc_cvx.network.edges as edges
+real = edges.preoptimize
+def interrupted(*args, **kwargs):  # Ctrl-C arrives while the edge table is built
+    os.kill(os.getpid(), signal.SIGINT)
+    time.sleep(5)
+    return real(*args, **kwargs)
+edges.preoptimize = interrupted
+from sdc_cvx.cli import main
+main(["run", "--n", "3", "--out", "r", "--quiet"])
+"""
+
+
+@pytest.mark.slow
+def test_ctrl_c_while_the_edge_table_is_built_keeps_the_answer(tmp_path):
+    """The search is over and its answer known: a Ctrl-C then (issue 28, 1.3) writes the
+    run folder without edges.csv, exit 0, instead of 'Aborted!' and nothing."""
+    done = subprocess.run([sys.executable, "-c", SIGINT_DURING_EDGES], capture_output=True,
+                          text=True, cwd=tmp_path, timeout=300, preexec_fn=as_terminal_job,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    data = json.loads((tmp_path / "r" / "solution.json").read_text())
+    assert data["status"] == "optimal"
+    assert not (tmp_path / "r" / "edges.csv").exists()
+    assert "without edges.csv" in (tmp_path / "r" / "run.log").read_text()
+    assert not (tmp_path / "r.log").exists()

@@ -195,7 +195,13 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
             fail(f"solver failure: {err}{kept}", exit_code(err))
         steps.set_phase("writing the run folder")
         steps.say(solution.summary(), show=False)
-        edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+        try:  # the edge table (edges.csv) is extra: a Ctrl-C here keeps the answer
+            edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+        except KeyboardInterrupt:
+            edge_table = None
+            steps.say("interrupted while pre-optimising the edge table: the run folder is "
+                      "written without edges.csv (Ctrl-C again to stop at once, writing "
+                      "nothing)")  # fmt: skip
     folder = Path(out_dir) if out_dir else None
     try:
         folder = folder or new_run_folder()
