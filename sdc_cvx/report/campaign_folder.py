@@ -10,9 +10,10 @@ A campaign folder::
     campaign.log       the progress of the search (if given)
     scenario.toml      the scenario as used (if given)
     timeline.png, raan.png, dv.png, bound.png   the figures
-    mission_01/ ...    one ordinary run folder per mission: its solution.json has the
-                       mission's own start date (the campaign's plus its launch day) and
-                       its legs from it
+    mission_01/ ...    one run folder per mission: its solution.json has the mission's
+                       own start date (the campaign's plus its launch day) and its legs
+                       from it; its run.log points to the campaign's log, its figures
+                       say which mission they show
 
 The whole folder is written aside and swapped in at once
 (:func:`~sdc_cvx.report.run_folder.write_staged`): an earlier campaign folder (one with
@@ -64,6 +65,16 @@ class _CampaignFiles:
             out += [f"{path.name}/{inner.name}" for inner in sorted(path.iterdir())
                     if inner.name not in RUN_FOLDER_FILES or not inner.is_file()]  # fmt: skip
         return out
+
+
+def _mission_log(title: str, mission) -> str:
+    """``run.log`` of a campaign's mission: what it is, and where its search is told."""
+    start = mission.catalog.start if mission.catalog is not None else None
+    when = f" ({start.isoformat()})" if start is not None else ""
+    return (f"{title}{when}\n"
+            "found by the campaign's search, not by a run of its own: the steps are in "
+            "../campaign.log, the scenario in ../scenario.toml\n"
+            f"{mission.summary()}\n")  # fmt: skip
 
 
 def _listed_missions(folder: Path) -> set[str] | None:
@@ -121,9 +132,11 @@ def write_campaign(folder, solution, *, formats=("png",), scenario_toml: str | N
 
                 table = preoptimize(mission.catalog, mission.mission,
                                     departure_day=mission.mission.deorbit_days)  # fmt: skip
+            title = (f"mission {entry['folder'][-2:].lstrip('0')} of the campaign, launched on "
+                     f"day {entry['launch_day']:g}")  # fmt: skip
             written = _write_files(sub, solution=mission, edges=table, scenario_toml=None,
                                    catalog=mission.catalog, formats=tuple(formats),
-                                   log=None)  # fmt: skip
+                                   log=_mission_log(title, mission), title=title)  # fmt: skip
             mission_files += [f"{entry['folder']}/{name}" for name in written]
         names += _write_texts(stage, {
             "missions.csv": solution.missions_frame().to_csv(

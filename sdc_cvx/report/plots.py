@@ -71,8 +71,15 @@ def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Fig
         drawn["orbits"] = plot_orbits(solution, catalog)
         drawn["raan"] = plot_raan(solution, catalog)
     drawn["cost"] = plot_cost(solution)
-    drawn["iterations"] = plot_iterations(solution)
+    if has_history(solution):
+        drawn["iterations"] = plot_iterations(solution)
     return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
+
+
+def has_history(solution: Solution) -> bool:
+    """True when the solution holds a search history to draw (a campaign's mission has
+    none: its search is the campaign's, whose ``bound.png`` draws it)."""
+    return bool(solution.iterations or solution.search_trace) or solution.method != "certified"
 
 
 # ---------------------------------------------------------------------- saving
@@ -82,6 +89,7 @@ def save_figures(
     folder: str | os.PathLike,
     formats: Sequence[str] = ("png",),
     dpi: int = 150,
+    title: str | None = None,
 ) -> list[Path]:
     """Write the four figures as ``{name}.{fmt}`` in ``folder``, atomically.
 
@@ -101,11 +109,14 @@ def save_figures(
         Any of :data:`SUPPORTED_FORMATS` (``"png"``, ``"svg"``, ``"pdf"``).
     dpi : int
         Resolution of raster formats [dots per inch].
+    title : str, optional
+        A line above each figure (a campaign's mission: which one, launched when).
 
     Returns
     -------
     list of Path
-        The files written, figure by figure, format by format.
+        The files written, figure by figure, format by format (``iterations`` only with
+        a history to draw: :func:`has_history`).
 
     Raises
     ------
@@ -130,9 +141,13 @@ def save_figures(
         "cost": lambda: plot_cost(solution),
         "iterations": lambda: plot_iterations(solution),
     }
+    if not has_history(solution):
+        del builders["iterations"]
     written = []
-    for name in FIGURE_NAMES:
+    for name in builders:
         fig = builders[name]()
+        if title:
+            fig.suptitle(title, fontsize=9, color="#444444")
         for fmt in formats:
             target = folder / f"{name}.{fmt}"
             write_figure(fig, target, fmt, dpi)  # 0644 under a 022 umask: meant to be shared

@@ -184,7 +184,8 @@ def legs_table(solution: Solution) -> pd.DataFrame:
 
 
 def iterations_table(solution: Solution) -> pd.DataFrame:
-    """``iterations.csv``: the iterations, with ``step`` saying what became of each.
+    """``iterations.csv``: the iterations, with ``step`` saying what became of each (for a
+    certified search without relaxation rounds, its bound and plan at each change).
 
     ``step`` is ``accepted``, ``rejected`` (the driver rejected the step; the
     ``rejected`` column says why, e.g. a plan that ends after T_max) or ``no path``,
@@ -192,6 +193,12 @@ def iterations_table(solution: Solution) -> pd.DataFrame:
     earlier iteration (the driver went back to an earlier point).
     """
     frame = solution.iterations_frame()
+    if frame.empty and solution.search_trace:  # a certified search that needed no relaxation
+        # loop: its steps are the bound and the plan each time either changed
+        rows = [{"iteration": k, "dv_true_mps": plan, "status": "bound", "elapsed_s": seconds,
+                 "note": "lower bound " + ("none yet" if bound is None else f"{bound:.2f} m/s")}
+                for k, (seconds, bound, plan) in enumerate(solution.search_trace)]  # fmt: skip
+        return pd.DataFrame(rows, columns=frame.columns).assign(path="", step="bound")
     if frame.empty:
         return frame
     seen: dict[tuple, int] = {}
@@ -306,7 +313,8 @@ def write_staged(folder: Path | str, fill: Callable[[Path], list[str]], *,
     return [folder / name for name in names]
 
 
-def _write_files(stage, *, solution, edges, scenario_toml, catalog, formats, log) -> list[str]:
+def _write_files(stage, *, solution, edges, scenario_toml, catalog, formats, log,
+                 title=None) -> list[str]:  # fmt: skip
     files = {
         "legs.csv": legs_table(solution).to_csv(index=False, float_format=CSV_FLOAT_FORMAT),
         "iterations.csv": iterations_table(solution).to_csv(
@@ -326,7 +334,8 @@ def _write_files(stage, *, solution, edges, scenario_toml, catalog, formats, log
     if catalog is not None and formats:
         from .plots import save_figures  # matplotlib only when figures are drawn
 
-        written += [p.name for p in save_figures(solution, catalog, stage, formats=tuple(formats))]
+        written += [p.name for p in save_figures(solution, catalog, stage, formats=tuple(formats),
+                                                 title=title)]  # fmt: skip
     write_atomic(stage / "solution.json", solution.to_json())
     return written + ["solution.json"]
 

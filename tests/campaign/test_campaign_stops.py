@@ -145,3 +145,30 @@ def test_an_earlier_campaign_folder_with_files_of_the_user_is_refused(catalog, t
     with pytest.raises(FileExistsError):
         answer.save(folder, formats=())
     assert (folder / "mission_09" / "solution.json").read_text() == "{}"
+
+
+def test_mission_folders_say_what_they_are(catalog, tmp_path):
+    """Issue 28, 1.7: each mission folder's run.log points to the campaign's log, its
+    figures say which mission and launch day, and it draws no empty search history."""
+    answer = solve_campaign(catalog, Campaign.of([0.0, 365.25], Mission(n=3)), workers=1)
+    answer.save(tmp_path / "c", formats=("svg",))
+    second = tmp_path / "c" / "mission_02"
+    log = (second / "run.log").read_text()
+    assert "mission 2 of the campaign, launched on day 365.25" in log
+    assert "../campaign.log" in log and " -> ".join(answer.missions[1].path) in log
+    assert "launched on day 365.25" in (second / "orbits.svg").read_text()
+    assert not (second / "iterations.svg").exists()  # the campaign's bound.svg draws it
+    assert (tmp_path / "c" / "bound.svg").exists()
+
+
+def test_a_default_run_tells_its_search_in_iterations_csv(tmp_path):
+    """A certified search that needs no relaxation round wrote a header-only table."""
+    import pandas as pd
+
+    from sdc_cvx import Catalog, solve
+
+    solution = solve(Catalog.paper_case(), Mission(n=3))
+    solution.save(tmp_path / "r", formats=())
+    table = pd.read_csv(tmp_path / "r" / "iterations.csv")
+    assert len(table) >= 1 and (table["status"] == "bound").all()
+    assert table["dv_true_mps"].dropna().iloc[-1] == pytest.approx(solution.total_dv_mps)
