@@ -607,3 +607,18 @@ def test_ctrl_c_while_the_edge_table_is_built_keeps_the_answer(tmp_path):
     assert not (tmp_path / "r" / "edges.csv").exists()
     assert "without edges.csv" in (tmp_path / "r" / "run.log").read_text()
     assert not (tmp_path / "r.log").exists()
+
+
+@pytest.mark.parametrize("command", [["campaign", str(EXAMPLES / "campaign_gtoc9.toml")],
+                                     ["sweep", str(EXAMPLES / "study_tmax_n.toml")]])
+def test_a_bad_scheduler_address_is_refused_before_any_work(tmp_path, command):
+    """Issue 28, 2.3: a traceback from distributed (campaign), 'cannot write the sweep
+    folder' and a half-made folder (sweep); now one line, exit 2, nothing written."""
+    pytest.importorskip("distributed")
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", *command, "--scheduler",
+                           "not an address", "--out", "out"], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=120,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 2, done.stderr
+    assert "--scheduler: cannot use the Dask scheduler 'not an address'" in done.stderr
+    assert "Traceback" not in done.stderr and list(tmp_path.iterdir()) == []

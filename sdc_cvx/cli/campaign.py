@@ -70,6 +70,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     )
     from ..report.out_folder import new_folder_problem
     from ..report.run_folder import new_run_folder
+    from ..study.executors import scheduler_problem
 
     if scheduler is not None and importlib.util.find_spec("distributed") is None:
         fail("--scheduler needs dask.distributed, which is not installed here: "
@@ -109,6 +110,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     if (problem := size_problem(len(catalog), at_once)) is not None:
         fail(f"{catalog.source}: {problem}")
     check_backend(scenario.solver)
+    if (problem := scheduler_problem(scheduler)) is not None:  # before any work
+        fail(f"--scheduler: {problem}")
     header = (
         f"Campaign of {len(campaign)} missions (launch days "
         f"{', '.join(f'{d:g}' for d in campaign.launch_days)}; n = "

@@ -28,6 +28,7 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
     """
     from ..report.out_folder import new_folder_problem
     from ..report.run_folder import new_run_folder
+    from ..study.executors import scheduler_problem
     from ..study.results import SOLVED_STATUSES
     from ..study.runner import run_study, sweep_folder_problem
     from ..study.study import load_study
@@ -47,6 +48,8 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
             fail(f"--out: {problem}")
     elif (problem := new_folder_problem()) is not None:
         fail(problem)
+    if (problem := scheduler_problem(scheduler)) is not None:  # before the folder is made
+        fail(f"--scheduler: {problem}")
     try:
         folder = Path(out_dir) if out_dir else new_run_folder(prefix="sdc_sweep_")
     except OSError as err:

@@ -30,7 +30,7 @@ def _executor(executor, scheduler, workers, pending: int) -> Iterator[cf.Executo
                 raise SweepError(
                     "a Dask scheduler needs dask.distributed: pip install 'sdc_cvx[dask]'"
                 ) from err
-            client, own = Client(os.fspath(scheduler)), True
+            client, own = _client(Client, os.fspath(scheduler)), True
         elif not hasattr(scheduler, "get_executor"):
             raise TypeError(
                 f"scheduler must be an address or a distributed.Client, "
@@ -194,6 +194,37 @@ def _locked(out: Path) -> Iterator[None]:
             (out / _LOCK_NAME).unlink(missing_ok=True)
     finally:
         handle.close()
+
+
+SCHEDULER_TIMEOUT_S = 10
+"""How long a Dask scheduler may take to answer a connection [s]."""
+
+
+def _client(client_class, address: str):
+    """A ``distributed.Client`` of ``address``, or a SweepError saying why not (a bad or
+    unreachable address raises many kinds of error, none of them a user's to read)."""
+    try:
+        return client_class(address, timeout=f"{SCHEDULER_TIMEOUT_S}s")
+    except Exception as err:  # OSError, TimeoutError, ValueError, even a MemoryError
+        raise SweepError(f"cannot use the Dask scheduler {address!r}: {type(err).__name__}: "
+                         f"{err}; check its address (tcp://HOST:PORT) and that it "
+                         "runs") from None  # fmt: skip
+
+
+def scheduler_problem(scheduler) -> str | None:
+    """Why ``scheduler`` (an address) cannot be used, or None: checked once, before any
+    work, so that a bad address costs no solve and leaves no half-made folder."""
+    if not isinstance(scheduler, str | os.PathLike):
+        return None
+    try:
+        from distributed import Client
+    except ImportError:
+        return "a Dask scheduler needs dask.distributed: pip install 'sdc_cvx[dask]'"
+    try:
+        _client(Client, os.fspath(scheduler)).close()
+    except SweepError as err:
+        return str(err)
+    return None
 
 
 def open_executor(executor=None, scheduler=None, workers: int | None = None,
