@@ -23,6 +23,8 @@ FIGURE_SIZE = (9.0, 4.8)
 _CANDIDATE_COLOR = "#c7c7c7"
 _MAX_LABELLED = 12
 """Missions whose debris are labelled by name on the timeline (more: markers only)."""
+_MAX_IDS = 80
+"""Rendezvous labelled with their debris' ids on the RAAN figure (more: markers only)."""
 
 
 def _color(k: int):
@@ -53,6 +55,7 @@ def plot_timeline(solution) -> Figure:
     """One row per mission: launch to end, each debris at its rendezvous date."""
     fig, ax = _figure()
     stops = rendezvous_days(solution)
+    span = max(max(d for row in stops for _, d in row) - solution.launch_days[0], 1.0)
     for k, (day, mission, row) in enumerate(zip(solution.launch_days, solution.missions, stops,
                                                 strict=True)):  # fmt: skip
         end = day + mission.total_duration_days
@@ -60,15 +63,10 @@ def plot_timeline(solution) -> Figure:
                 solid_capstyle="butt")  # fmt: skip
         ax.plot([d for _, d in row], [k] * len(row), "o", color=_color(k), markersize=6)
         if len(solution.missions) <= _MAX_LABELLED:
-            for n, (name, d) in enumerate(row):
-                ax.annotate(
-                    name,
-                    (d, k),
-                    textcoords="offset points",
-                    xytext=(0, 8 if n % 2 == 0 else -14),
-                    ha="center",
-                    fontsize=8,
-                )
+            for name, d, offset in zip(*zip(*row, strict=True), _label_levels(row, span),
+                                       strict=True):  # fmt: skip
+                ax.annotate(name, (d, k), textcoords="offset points", xytext=(0, offset),
+                            ha="center", fontsize=8)  # fmt: skip
         ax.annotate(f"{mission.total_dv_mps:.0f} m/s", (end, k), textcoords="offset points",
                     xytext=(6, -3), fontsize=8, color="#444444")  # fmt: skip
     ax.set_yticks(range(len(solution.missions)),
@@ -82,34 +80,70 @@ def plot_timeline(solution) -> Figure:
     return fig
 
 
+def _label_levels(row, span: float) -> list[float]:
+    """Vertical offsets [points] of a row's labels, above and below in turn, a label moved
+    further out when it would touch the last one at its level (ids of debris met a few
+    days apart once printed as one: "73" and "11" as "7311")."""
+    levels = (8.0, -14.0, 17.0, -23.0)
+    last = dict.fromkeys(levels, -np.inf)
+    out = []
+    for n, (name, day) in enumerate(row):
+        width = 0.012 * span * (len(str(name)) + 1)  # a label's width in days, roughly
+        order = levels[n % 2 :: 2] + levels[1 - n % 2 :: 2]
+        level = next((lv for lv in order if day - last[lv] > width), order[0])
+        last[level] = day
+        out.append(level)
+    return out
+
+
 def plot_raan(solution) -> Figure:
-    """The RAAN of every candidate against time, each mission's debris marked where the
-    vehicle meets them (J2 rates from the catalog elements and the missions' J2)."""
+    """The RAAN of every candidate against time, seen from a frame turning at their median
+    J2 rate (so that 123 debris are 123 slow lines, not a saw of wraps), each mission's
+    debris coloured while it flies and marked, with its id, where the vehicle meets them
+    (J2 rates from the catalog elements and the missions' J2)."""
     fig, ax = _figure()
     catalog = solution.catalog
     j2 = solution.missions[0].mission.j2
     rate = np.degrees(raan_rate(catalog.a_m, catalog.e, catalog.inc_rad, j2=j2)) * SECONDS_PER_DAY
+    frame_rate = float(np.median(rate))
+    raan0 = np.asarray(catalog.frame["raan_deg"], dtype=float)
     stops = rendezvous_days(solution)
     end = max(d for row in stops for _, d in row)
-    days = np.linspace(0.0, max(end, 1.0), 200)
-    raan = np.mod(np.asarray(catalog.frame["raan_deg"])[:, None] + rate[:, None] * days, 360.0)
-    wrapped = np.where(np.abs(np.diff(raan, axis=1, prepend=raan[:, :1])) > 180.0, np.nan, raan)
-    for row in wrapped:
-        ax.plot(days, row, color=_CANDIDATE_COLOR, linewidth=0.6)
+    days = np.linspace(0.0, max(end, 1.0), 400)
+
+    def relative(rows, when):
+        return np.mod(raan0[rows, None] + (rate[rows, None] - frame_rate) * when + 180.0,
+                      360.0) - 180.0  # fmt: skip
+
+    def unwrapped(values):  # no line across the +/-180 deg seam
+        jump = np.abs(np.diff(values, axis=-1, prepend=values[..., :1])) > 180.0
+        return np.where(jump, np.nan, values)
+
+    for row in unwrapped(relative(np.arange(len(catalog)), days)):
+        ax.plot(days, row, color=_CANDIDATE_COLOR, linewidth=0.5, zorder=1)
     index = {name: k for k, name in enumerate(catalog.ids)}
-    for k, row in enumerate(stops):
-        names = [name for name, _ in row if name in index]
+    labelled = sum(len(row) for row in stops) <= _MAX_IDS
+    for k, (day, mission, row) in enumerate(zip(solution.launch_days, solution.missions, stops,
+                                                strict=True)):  # fmt: skip
+        rows = [index[name] for name, _ in row if name in index]
+        window = np.linspace(day, day + mission.total_duration_days, 100)
+        for track in unwrapped(relative(np.asarray(rows), window)):
+            ax.plot(window, track, color=_color(k), linewidth=1.4, alpha=0.7, zorder=2)
         when = np.array([d for name, d in row if name in index])
-        at = np.mod(np.asarray(catalog.frame["raan_deg"])[[index[n] for n in names]]
-                    + rate[[index[n] for n in names]] * when, 360.0)  # fmt: skip
-        ax.plot(when, at, "o-", color=_color(k), markersize=5, linewidth=1.2,
-                label=f"mission {k + 1}")  # fmt: skip
+        at = relative(np.asarray(rows), when[None, :])[np.arange(len(rows)), np.arange(len(rows))]
+        ax.plot(when, at, "o", color=_color(k), markersize=5, zorder=3, label=f"mission {k + 1}")
+        if labelled:
+            names = [n for n, _ in row if n in index]
+            for m, (name, x, y) in enumerate(zip(names, when, at, strict=True)):
+                ax.annotate(name, (x, y), textcoords="offset points", fontsize=7,
+                            xytext=(3, 5) if m % 2 == 0 else (3, -11), color=_color(k))  # fmt: skip
     ax.set_xlabel("days after the campaign start")
-    ax.set_ylabel("RAAN [deg]")
-    ax.set_ylim(0, 360)
-    ax.set_title(f"RAANs of the {len(catalog)} candidates (grey) and the debris each mission "
-                 "removes")  # fmt: skip
-    ax.legend(fontsize=8, loc="upper right", ncols=min(5, len(stops)))
+    ax.set_ylabel("RAAN in the turning frame [deg]")
+    ax.set_ylim(-180, 180)
+    ax.set_yticks(range(-180, 181, 60))
+    ax.set_title(f"RAANs of the {len(catalog)} candidates (grey) in a frame turning at their "
+                 f"median J2 rate, {frame_rate:.3f} deg/day", fontsize=10)  # fmt: skip
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
 
 
@@ -174,6 +208,8 @@ def plot_bound(solution) -> Figure:
             else max(finite.max(), solution.greedy.dv_mps)
         )
         ax.set_ylim(finite.min() - 0.1 * span, top + 0.1 * span)
+    if t.size:  # from the start, the last step's markers inside the frame
+        ax.set_xlim(0.0, 1.05 * float(np.nanmax(t)) + 0.5)
     ax.set_xlabel("elapsed [s]")
     ax.set_ylabel("campaign ΔV [m/s]")
     gap = (f"gap {solution.gap_mps:.2f} m/s ({100 * solution.gap_rel:.2f} %)"

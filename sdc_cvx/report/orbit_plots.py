@@ -223,12 +223,15 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
             gid=f"drift-{k + 1}",
             zorder=4,
         )
+        # a label near an edge is held inside the frame (not over the tick labels)
+        x, ha = ((start, "left") if middle < 0.12 * end else (stop, "right")
+                 if middle > 0.88 * end else (middle, "center"))  # fmt: skip
         ax.annotate(
             f"{_leg_name(leg)}\n{leg.drift_alt_km:.0f} km, {leg.drift_inc_deg:.2f}\u00b0",
-            xy=(middle, leg.drift_alt_km),
+            xy=(x, leg.drift_alt_km),
             xytext=(0, 5) if crowded else (0, -5),
             textcoords="offset points",
-            ha="center",
+            ha=ha,
             va="bottom" if crowded else "top",
             fontsize=_NOTE_SIZE,
             color=color,

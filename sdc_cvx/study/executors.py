@@ -264,6 +264,8 @@ def unguarded_call_site() -> str | None:
         return None  # python -m package: workers do not import it again
     path, line = frame.f_code.co_filename, frame.f_lineno
     script = frame.f_globals.get("__file__")
+    if script is not None and not os.path.isfile(script):  # a script piped in (<stdin>):
+        return f"{path}, line {line}"  # workers would look for a file of that name, and die
     try:
         if script is None or not os.path.samefile(script, path):
             return None  # a notebook cell, an interactive session: nothing to import

@@ -1,0 +1,56 @@
+"""Campaign figures people can read (issue 28, 3.2)."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from sdc_cvx import Campaign, Mission, solve_campaign
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.report import atomic
+from sdc_cvx.report.campaign_plots import _label_levels, plot_raan, plot_timeline
+
+
+@pytest.fixture(scope="module")
+def answer():
+    catalog = sso_catalog(9, seed=7, inclination_spread_deg=0.8)
+    return solve_campaign(catalog, Campaign.of([0.0, 365.25], Mission(n=3)), workers=1)
+
+
+def test_labels_of_debris_met_days_apart_do_not_share_a_place():
+    """GTOC9's "73" and "11", met 36 days apart on a 1,800-day axis, printed as "7311"."""
+    row = [("111", 733.0), ("10", 758.0), ("73", 1033.0), ("85", 1033.5), ("11", 1069.0)]
+    placed = {}
+    for (name, day), level in zip(row, _label_levels(row, span=1800.0), strict=True):
+        for other_day, other_name in placed.get(level, []):
+            assert abs(day - other_day) > 0.012 * 1800 * (len(name) + 1), (name, other_name)
+        placed.setdefault(level, []).append((day, name))
+
+
+def test_the_raan_figure_draws_no_line_across_the_seam_and_names_the_debris(answer):
+    fig = plot_raan(answer)
+    ax = fig.axes[0]
+    for line in ax.get_lines():
+        if line.get_linestyle() == "None":  # markers only: nothing drawn between them
+            continue
+        y = np.asarray(line.get_ydata(), dtype=float)
+        steps = np.abs(np.diff(y))
+        assert np.all(steps[np.isfinite(steps)] < 180.0)  # no line across +/-180 deg
+        assert np.nanmax(np.abs(y)) <= 180.0
+    names = {text.get_text() for text in ax.texts}
+    assert {d for m in answer.missions for d in m.path} <= names
+
+
+def test_a_missing_glyph_is_said_once_not_once_per_glyph_and_figure(answer, tmp_path,
+                                                                    monkeypatch):  # fmt: skip
+    monkeypatch.setattr(atomic, "_GLYPHS_SAID", [])
+    fig = plot_timeline(answer)
+    fig.axes[0].set_title("碎片 一 二 三")  # glyphs the default font lacks
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        atomic.write_figure(fig, tmp_path / "a.png", "png", 50)
+        atomic.write_figure(fig, tmp_path / "b.png", "png", 50)
+    said = [w for w in caught if "font" in str(w.message)]
+    assert len(said) == 1 and "show as boxes" in str(said[0].message)
