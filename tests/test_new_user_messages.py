@@ -45,3 +45,16 @@ def test_overlapping_drop_reasons_say_they_overlap(tmp_path):
     assert result.exit_code == 0, result.output
     assert "kept 3 of 4 candidates (dropped: 1 inclination, 1 eccentricity" in result.stderr
     assert "; 1 debris in all, one failing several checks counts in each" in result.stderr
+
+
+def test_edges_takes_the_candidate_filters_and_sets_aside_what_is_not_an_orbit(tmp_path):
+    """``edges`` read strictly, with none of the filters ``run`` has."""
+    path = tmp_path / "d.csv"
+    path.write_text("id,a_km,e,inc_deg,raan_deg\n1,7000,0.001,98,10\n2,7050,0.001,98,40\n"
+                    "3,7100,0.001,98,70\n4,6500,0.001,98,90\n5,7300,0.001,98,20\n")  # fmt: skip
+    result = CliRunner().invoke(main, ["edges", "--catalog", str(path), "--all",
+                                       "--altitude-km", "600", "800"])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    ids = {line.split(",")[0] for line in result.stdout.splitlines()[1:]}
+    assert ids == {"1", "2", "3"}  # 4 and 5 are outside 600-800 km
+    assert "kept 3 of 5 candidates (dropped: 2 altitude)" in result.stderr

@@ -42,20 +42,31 @@ MAX_DROPPED_SHOWN = 20
     help="Reference departure date of every edge [days after the start].",
 )
 @click.option("--all", "show_all", is_flag=True, help="Also list the dropped edges and why.")
+@selection_options
 def edges_command(scenario_file, catalog_path, catalog_format, start, preopt_days, dv_max_mps,
-          departure_day, show_all):  # fmt: skip
+                  departure_day, show_all, altitude_km, inclination_deg, max_eccentricity, ids,
+                  exclude_ids, names, types, strict):  # fmt: skip
     """Print the pre-optimised edge table (paper Part IV-B) as CSV on stdout.
 
-    SCENARIO.toml (optional) gives the catalog and mission; the options override it.
+    SCENARIO.toml (optional) gives the catalog and mission; the options override it.  The
+    candidate filters act first, as for ``run`` (element sets that are not orbits of this
+    model are dropped with a warning, refused with --strict).
     """
     from ..network.edges import preoptimize
+    from ..planner.size_guard import size_problem
 
     if not (math.isfinite(departure_day) and departure_day >= 0):
         fail(f"--departure-day: expected a finite number of days >= 0, got {departure_day:g}")
+    filters = selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
+                                  names, types, strict)  # fmt: skip
     scenario = build_scenario(scenario_file, catalog_path=catalog_path,
                               catalog_format=catalog_format, catalog_start=start,
-                              preopt_days=preopt_days, dv_max_mps=dv_max_mps)  # fmt: skip
-    catalog = read_catalog(scenario)
+                              preopt_days=preopt_days, dv_max_mps=dv_max_mps,
+                              **filters)  # fmt: skip
+    catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
+    catalog, _ = select_candidates(catalog, scenario, partial(click.echo, err=True))
+    if (problem := size_problem(len(catalog))) is not None:  # a table of every ordered pair
+        fail(f"{catalog.source}: {problem}")
     table = preoptimize(catalog, scenario.mission, departure_day=departure_day)
     frame = table.frame if show_all else table.kept
     click.echo(frame.to_csv(index=False, float_format="%.6g"), nl=False)
