@@ -154,6 +154,9 @@ def solve_lp(columns, n_launches: int, n_debris: int, must_remove=()) -> MasterL
         )
     artificial = float(np.sum(idle.value)) + float(np.sum(missing.value)) if len(required) \
         else float(np.sum(idle.value))  # fmt: skip
+    # a packing row's multiplier must be >= 0 for the Lagrangian bound to hold; a solver's
+    # -1e-12 is rounding: any y >= 0 is a valid multiplier, so clip (the prices stay exact)
+    prices[packed] = np.maximum(prices[packed], 0.0)
     return MasterLP(value, sigma, prices, np.asarray(weights.value, dtype=float), artificial)
 
 

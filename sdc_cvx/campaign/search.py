@@ -259,12 +259,12 @@ class _Campaign:
             solved = all(r.lower_mps >= lp.sigma[k] - self.tol - 1e-9
                          for k, r in enumerate(results))  # fmt: skip
             if solved and lp.artificial > 1e-6:
-                raise MissionInfeasible(
-                    "proven: no campaign removes each debris at most once with these missions "
-                    f"({self.missions_text()}); every launch flies alone, but not together. "
-                    "Relax one of: fewer debris per mission (n), must_remove, a longer "
-                    "mission (tmax_days), more candidates"
-                )
+                # the LP needs an artificial column at its optimum: no campaign is likely,
+                # but a big-M cost proves it only where no price reaches it, so the closing
+                # step proves it (every mission that flies, then the exact master)
+                self.say("  the master LP needs its artificial columns: enumerating every "
+                         "mission that flies to prove whether any campaign does")  # fmt: skip
+                break
             if self.within() or solved or self.out_of_time() or new == 0:
                 if self.out_of_time() and not self.within():
                     self.notes.append(f"{self.limit_reached()} during column generation")
@@ -275,7 +275,7 @@ class _Campaign:
             self.notes.append(f"round limit ({MAX_ROUNDS}) of the column generation reached")
         return last
 
-    def close(self, prices: np.ndarray, bounds: np.ndarray) -> None:
+    def close(self, prices: np.ndarray | None, bounds: np.ndarray | None) -> None:
         """Step 4: every mission that could be on a cheaper campaign, then the exact master.
 
         Without a plan (the LP is fractional and the pool holds no campaign), every
@@ -425,8 +425,9 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         last = None
         if not search.within():
             last = search.generate_columns()
-        if not search.within() and last is not None and not search.out_of_time():
-            search.close(*last)
+        if not search.within() and not search.out_of_time() and (
+                last is not None or search.plan is None):  # without a plan: no prices needed
+            search.close(*(last or (None, None)))
     if search.plan is None:
         raise SolverFailure(
             "no campaign was found within the limits (the launches fly alone, but the pool "

@@ -257,7 +257,8 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
         the lower bound [m/s, -].
     cutoff_mps : float
         Stop as soon as the lower bound exceeds this [m/s] (the path cannot beat a plan
-        in hand); the schedule returned is then the best found so far.
+        in hand); the schedule returned is then the best found so far, and its lower
+        bound a true one still (the cells dropped above the cutoff count in it).
     max_rounds : int
     time_limit_s : float
 
@@ -278,6 +279,7 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
     caches = [_BoundCache() for _ in range(L)]
     best_upper, best_plan = np.inf, None
     lower = -np.inf
+    dropped_floor = np.inf  # no schedule through a cell dropped above the limit costs less
     rounds = 0
     special = _special_dates(problem, earliest)
     floors = problem.legs.floor(np.asarray(problem.edges))
@@ -315,6 +317,8 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
         for k in range(1, L + 1):
             through = forward[k] + backward[k]
             keep = through <= limit
+            if not keep.all():  # above a cutoff, the path's optimum may lie in them
+                dropped_floor = min(dropped_floor, float(through[~keep].min()))
             split = np.zeros(len(cells[k]), dtype=bool)
             split[np.argsort(through)[:SPLIT_CELLS]] = True
             split &= through < limit - tol
@@ -325,6 +329,9 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
             break  # nothing left to split: the cells are at their narrowest
         cells = new_cells
     lower = max(lower, -np.inf) if np.isfinite(lower) else (np.inf if best_plan is None else lower)
+    # the DP covers the cells kept; a cutoff below the path's optimum may have dropped the
+    # cells that hold it: the bound is the least of the two (a proof, reusable as one)
+    lower = min(lower, dropped_floor)
     if best_plan is None:
         return _no_schedule(L, lower, rounds, sum(map(len, cells)), start_clock)
     lower = min(lower, best_upper)

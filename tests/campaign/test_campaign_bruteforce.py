@@ -159,7 +159,8 @@ def test_must_remove_beyond_the_missions_is_refused():
 
 def test_missions_that_cannot_share_the_debris_are_infeasible():
     """Each launch flies alone, but the first may not take S000-S002 and the second holds
-    two debris: three must_remove debris cannot all be removed (the master LP proves it)."""
+    two debris: three must_remove debris cannot all be removed (the master LP needs its
+    artificial columns; the enumeration of every mission that flies proves it)."""
     first = Mission(n=2, tmax_days=365.25, exclude=("S000", "S001", "S002"))
     campaign = Campaign((0.0, 30.0), (first, Mission(n=2, tmax_days=365.25)),
                         must_remove=("S000", "S001", "S002"))  # fmt: skip
