@@ -51,8 +51,8 @@ def run_case(name: str, time_limit: float, workers: int, scheduler=None) -> dict
     catalog, _ = scenario.selection.apply(scenario.load_catalog())
     campaign = Campaign.yearly(missions, sdc_cvx.Mission(n=n))
     clock = time.perf_counter()
-    solution = solve_campaign(catalog, campaign, time_limit_s=time_limit, workers=workers,
-                              scheduler=scheduler,
+    pool = {"workers": workers} if scheduler is None else {"scheduler": scheduler}
+    solution = solve_campaign(catalog, campaign, time_limit_s=time_limit, **pool,
                               log=lambda line: print(f"    {time.perf_counter() - clock:7.1f} s"
                                                      f" {line}", flush=True))  # fmt: skip
     return dict(case=name, N=len(catalog), K=missions, n=n, plan=solution.total_dv_mps,
@@ -102,8 +102,10 @@ def main() -> None:
     for r in rows:
         greedy = "-" if r["greedy"] is None else f"{r['greedy']:9.2f}"
         greedy_gap = "-" if r["greedy_gap"] is None else f"{100 * r['greedy_gap']:9.2f}%"
+        bound = "-" if r["bound"] is None else f"{r['bound']:9.2f}"  # no bound proven yet
+        gap = "-" if r["gap"] is None else f"{100 * r['gap']:6.3f}%"
         print(f"{r['case']:8} {r['executor']:18} {r['N']:4d} {r['K']:>2} x {r['n']:<2} "
-              f"{r['plan']:9.2f} {r['bound']:9.2f} {100 * r['gap']:6.3f}% {r['status']:>9} "
+              f"{r['plan']:9.2f} {bound:>9} {gap:>7} {r['status']:>9} "
               f"{greedy:>9} {greedy_gap:>10} {r['columns']:7d} {r['pricings']:8d} "
               f"{r['seconds']:8.1f} {r['peak_mb']:8.0f}")  # fmt: skip
     for r in rows:
