@@ -35,6 +35,7 @@ from ..planner.api import certified_nodes
 from ..planner.certified import certify
 from ..planner.fixed_path import PathSchedule
 from ..planner.nodes import MissionNodes
+from ..study.executors import restore_malloc
 
 
 @dataclass(frozen=True)
@@ -173,6 +174,7 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     -------
     Pricing
     """
+    restore_malloc()  # a Dask worker's malloc thresholds make it 2-3 times slower
     clock = time.perf_counter()
     mission = launch.mission
     nodes = MissionNodes.of(launch.catalog, mission)
