@@ -58,3 +58,15 @@ def test_edges_takes_the_candidate_filters_and_sets_aside_what_is_not_an_orbit(t
     ids = {line.split(",")[0] for line in result.stdout.splitlines()[1:]}
     assert ids == {"1", "2", "3"}  # 4 and 5 are outside 600-800 km
     assert "kept 3 of 5 candidates (dropped: 2 altitude)" in result.stderr
+
+
+@pytest.mark.slow
+def test_the_papers_method_with_low_thrust_says_why_its_edges_are_too_few():
+    """At the paper's T0 = 61 days most low-thrust edges cannot close; the message says
+    the spirals take part of T0 and that the default method does not use it (issue 29)."""
+    from sdc_cvx import SolverOptions, solve
+    from sdc_cvx.errors import MissionInfeasible
+
+    mission = Mission(transfer="low-thrust", vehicle={"accel_mps2": 1e-4})
+    with pytest.raises(MissionInfeasible, match="with low thrust each edge's spirals"):
+        solve(Catalog.paper_case(), mission, solver=SolverOptions(method="paper"))
