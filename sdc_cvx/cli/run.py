@@ -192,6 +192,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
             fail(f"infeasible mission: {err}", exit_code(err))
         except SolverFailure as err:
             kept = f" (progress in {live_log})" if live_log is not None else ""
+            if stop():  # a Ctrl-C before any plan: interrupted, not a failure
+                fail(f"interrupted before any plan: nothing written{kept}", INTERRUPTED)
             fail(f"solver failure: {err}{kept}", exit_code(err))
         steps.set_phase("writing the run folder")
         steps.say(solution.summary(), show=False)

@@ -73,7 +73,9 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
     from sdc_cvx.planner.certified.network import OutOfTime, cost_table_clock
 
     lines = []
-    clock = type("Clock", (), {"deadline": time.perf_counter() + 1e3, "say": lines.append})()
+    asked = []
+    clock = type("Clock", (), {"deadline": time.perf_counter() + 1e3, "say": lines.append,
+                               "stop": lambda self: bool(asked)})()  # fmt: skip
     on_chunk = cost_table_clock(clock, every_s=0.0)
     on_chunk(1, 10**12)  # at this pace the tables need far more than the 1000 s left
     on_chunk(2, 10**12)
@@ -81,8 +83,12 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
     assert any(line.startswith("  cost tables: 0% done (2 of") for line in lines)
     on_chunk(10**12, 10**12)  # done: the heartbeat's phase moves on to the network
     assert lines[-1].startswith("  cost tables done (1000000000000 edges")
+    asked.append(True)  # a Ctrl-C: the tables stop at their next chunk
+    with pytest.raises(OutOfTime, match="interrupted while building the edge cost tables"):
+        on_chunk(3, 10**12)
+    asked.clear()
     clock.deadline = 0.0
-    with pytest.raises(OutOfTime, match="3 of 1000000000000 edges"):
+    with pytest.raises(OutOfTime, match=r"time limit reached .*\(3 of 1000000000000 edges"):
         on_chunk(3, 10**12)
 
 

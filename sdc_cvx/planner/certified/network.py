@@ -50,8 +50,8 @@ SETUP_PROGRESS_S = 5.0
 def cost_table_clock(search, every_s: float | None = None):
     """``LegCosts.build``'s chunk callback: the fraction done every ``every_s`` [s], a
     word up front when the tables alone will outlast the time limit, and the limit
-    itself (:class:`OutOfTime`).  ``search`` has the ``deadline`` (read at each chunk)
-    and ``say``."""
+    itself, or the caller's stop (:class:`OutOfTime`).  ``search`` has the ``deadline``
+    and ``stop`` (read at each chunk) and ``say``."""
     every_s = SETUP_PROGRESS_S if every_s is None else every_s
     started = last = time.perf_counter()
     warned = False
@@ -59,8 +59,9 @@ def cost_table_clock(search, every_s: float | None = None):
     def on_chunk(done: int, total: int) -> None:
         nonlocal last, warned
         now = time.perf_counter()
-        if now >= search.deadline and done < total:
-            raise OutOfTime(f"time limit reached while building the edge cost tables "
+        if done < total and (now >= search.deadline or search.stop()):
+            why = "interrupted" if search.stop() else "time limit reached"
+            raise OutOfTime(f"{why} while building the edge cost tables "
                             f"({done} of {total} edges in {now - started:.0f} s)")  # fmt: skip
         need = (now - started) * total / max(done, 1)
         if not warned and done < total and started + need > search.deadline:

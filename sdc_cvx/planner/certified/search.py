@@ -86,8 +86,9 @@ class _Search:
 
     def __init__(self, orbits, nodes: CertifiedNodes, a_low, a_high, *, deadline, say,
                  initial_cells, names=None, path_tol_rel=0.0, gap_abs_mps=PATH_TOL_MPS,
-                 ceiling_mps=-np.inf, known=None):  # fmt: skip
+                 ceiling_mps=-np.inf, known=None, stop=None):  # fmt: skip
         n = len(nodes.ops_days)
+        self.stop = stop or (lambda: False)  # asked by the cost tables' chunks too
         self.names = [str(k) for k in range(n)] if names is None else [str(v) for v in names]
         # no finer than the model's box bounds resolve a mission (low thrust: mm/s a leg)
         self.path_tol_rel = path_tol_rel
@@ -343,7 +344,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                          say=progress or (lambda line: None), initial_cells=initial_cells,
                          names=names, gap_abs_mps=gap_abs_mps,
                          path_tol_rel=gap_rel / 2 if path_tol_rel is None else path_tol_rel,
-                         ceiling_mps=ceiling_mps, known=known)  # fmt: skip
+                         ceiling_mps=ceiling_mps, known=known, stop=stop)  # fmt: skip
     except OutOfTime as err:
         return CertifiedResult((), None, np.inf, -np.inf, "no_plan", [], 0, 0,
                                time.perf_counter() - clock, (str(err),),
