@@ -3,6 +3,7 @@ executor), and the options that choose it, checked as the command line checks th
 
 from __future__ import annotations
 
+import concurrent.futures as cf
 import os
 import warnings
 
@@ -34,21 +35,35 @@ def check_options(solver, gap, time_limit_s, workers, scheduler, executor) -> No
 
 
 class PricingRuns:
-    """``run(tasks) -> results``: the pricing tasks in this process, or on an executor."""
+    """``run(tasks) -> results``: the pricing tasks in this process, or on an executor;
+    ``say`` hears of each one done (a long round is then never silent: the command
+    line's heartbeat shows how far it is)."""
 
-    def __init__(self, inline, executor, scheduler, workers, pending, stop=None):
-        self.inline, self.stop = inline, stop
+    def __init__(self, inline, executor, scheduler, workers, pending, stop=None, say=None):
+        self.inline, self.stop, self.say = inline, stop, say or (lambda line: None)
         self.context = None if inline else open_executor(executor, scheduler, workers, pending)
+
+    def done(self, count: int, total: int, launch) -> None:
+        if total > 1:
+            self.say(f"  pricing: {count} of {total} launches done (mission {launch.index + 1})")
 
     def __enter__(self):
         if self.inline:
-            return lambda tasks: [price(launch, stop=self.stop, **kwargs)
-                                  for launch, kwargs in tasks]  # fmt: skip
+            def run_here(tasks):
+                out = []
+                for launch, kwargs in tasks:
+                    out.append(price(launch, stop=self.stop, **kwargs))
+                    self.done(len(out), len(tasks), launch)
+                return out
+
+            return run_here
         pool = self.context.__enter__()
 
         def run(tasks):
-            futures = [pool.submit(price, launch, **kwargs) for launch, kwargs in tasks]
-            return [f.result() for f in futures]
+            futures = {pool.submit(price, launch, **kwargs): launch for launch, kwargs in tasks}
+            for count, future in enumerate(cf.as_completed(futures), start=1):
+                self.done(count, len(futures), futures[future])
+            return [future.result() for future in futures]  # in the tasks' order
 
         return run
 

@@ -411,7 +411,7 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     say = log or (lambda line: None)
     launches = len(campaign)
     inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
-    with PricingRuns(inline, executor, scheduler, workers, launches, stop) as run:
+    with PricingRuns(inline, executor, scheduler, workers, launches, stop, say) as run:
         search = _Campaign(catalog, campaign, solver, gap, deadline, say, run, stop)
         alone = search.launches_alone()
         greedy = search.greedy(alone)

@@ -77,3 +77,13 @@ def test_run_on_a_campaign_scenario_says_it_plans_one_mission(tmp_path):
                           env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert "has a [campaign] table" in done.stderr and "sdc_cvx campaign" in done.stderr
+
+
+def test_each_pricing_done_is_said_so_a_long_round_is_never_silent():
+    """Issue 28, 3.3: heartbeats repeated one line for minutes with no fraction done."""
+    lines: list[str] = []
+    solve_campaign(Catalog.paper_case(), Campaign.yearly(2, Mission(n=2)), workers=1,
+                   log=lines.append)  # fmt: skip
+    done = [line for line in lines if "pricing:" in line]
+    assert "  pricing: 1 of 2 launches done (mission 1)" in done
+    assert "  pricing: 2 of 2 launches done (mission 2)" in done
