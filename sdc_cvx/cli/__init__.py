@@ -18,7 +18,7 @@ import click
 
 from .campaign import campaign_command
 from .exits import EXIT_CODES, INFEASIBLE, INPUT_ERROR, INTERRUPTED, SOLVER_FAILED, exit_code
-from .progress import RunProgress
+from .progress import RunProgress, quiet_resource_tracker
 from .run import run_command
 from .sweep import sweep_command
 from .tables import catalog_command, edges_command, solvers_command
@@ -39,6 +39,7 @@ __all__ = [
 @click.version_option(package_name="sdc_cvx")
 def main():
     """Plan active debris removal missions (Cerf's method, CVXPY + MILP)."""
+    quiet_resource_tracker()
 
 
 main.add_command(run_command)

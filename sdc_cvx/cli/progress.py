@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import contextlib
 import signal
+import sys
 import threading
 import time
 from datetime import UTC, datetime
@@ -158,6 +159,21 @@ def open_progress_log(out_dir):
             fail(f"--out: {err}")
         fail(f"--out: cannot write the progress log {live_log}: {err.strerror or err}")
     return live_log, stream, made
+
+
+RESOURCE_TRACKER_NOISE = "ignore:resource_tracker:UserWarning"
+"""The warning filter handed to multiprocessing's resource tracker (see below)."""
+
+
+def quiet_resource_tracker() -> None:
+    """Keep multiprocessing's resource tracker from printing, after a pool stopped at once
+    by a second Ctrl-C, that it cleans up the pool's semaphores ("There appear to be 5
+    leaked semaphore objects to clean up at shutdown"): it does clean them up, and the
+    command has already said what it kept.  The tracker is a process of its own, started
+    with this interpreter's warning options, so the filter goes there (before any pool).
+    """
+    if RESOURCE_TRACKER_NOISE not in sys.warnoptions:
+        sys.warnoptions.append(RESOURCE_TRACKER_NOISE)
 
 
 @contextlib.contextmanager

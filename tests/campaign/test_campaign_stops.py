@@ -172,3 +172,34 @@ def test_a_default_run_tells_its_search_in_iterations_csv(tmp_path):
     table = pd.read_csv(tmp_path / "r" / "iterations.csv")
     assert len(table) >= 1 and (table["status"] == "bound").all()
     assert table["dv_true_mps"].dropna().iloc[-1] == pytest.approx(solution.total_dv_mps)
+
+
+@pytest.mark.slow
+def test_a_second_ctrl_c_leaves_no_noise_about_leaked_semaphores(tmp_path):
+    """Issue 28, 3.3: after a pool stopped at once, multiprocessing's resource tracker
+    printed 'There appear to be 5 leaked semaphore objects to clean up at shutdown'."""
+    csv = tmp_path / "debris.csv"
+    sso_catalog(60, seed=3).frame[["id", "a_km", "e", "inc_deg", "raan_deg"]].to_csv(
+        csv, index=False)  # fmt: skip
+    scenario = tmp_path / "c.toml"
+    scenario.write_text(SCENARIO.format(catalog=csv).replace("n = 3", "n = 4"))
+    run = subprocess.Popen([sys.executable, "-m", "sdc_cvx", "campaign", str(scenario),
+                            "--out", "out", "--workers", "2"], cwd=tmp_path,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                           env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"},
+                           preexec_fn=as_terminal_job)  # fmt: skip
+    live = tmp_path / "out.log"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and run.poll() is None:
+        if live.exists() and "each launch alone" in live.read_text():
+            break
+        time.sleep(0.02)
+    time.sleep(1.0)  # the pool's workers at work
+    if run.poll() is not None:
+        pytest.skip("the campaign ended before the Ctrl-C")
+    run.send_signal(signal.SIGINT)
+    time.sleep(0.3)
+    run.send_signal(signal.SIGINT)  # the second: at once
+    _, stderr = run.communicate(timeout=300)
+    assert run.returncode == 130, stderr
+    assert "leaked semaphore" not in stderr and "Traceback" not in stderr
