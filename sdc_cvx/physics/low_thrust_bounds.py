@@ -1,18 +1,11 @@
 """Exact costs and certified lower bounds of low-thrust legs over boxes of dates.
 
-The low-thrust leg (:mod:`~sdc_cvx.physics.low_thrust`) leaving at date t and arriving
-at t' = t + D flies a drift radius a_d; write it as the circular speed ``w = V(a_d)``.
-Its RAAN closes when
-
-    phi(w; t, D) = beta(w) + rel(w) D - g t - G0  is a multiple of 2 pi,
-
-with ``rel(w) = Omega_dot(w, I_d) - Omega_dot_j`` (the coast's relative rate),
-``beta(w) = dOmega_thrust(w) - Omega_dot(w, I_d) t_thrust(w)``, ``g = Omega_dot_j -
-Omega_dot_i`` and ``G0 = Omega_j(0) - Omega_i(0)``: the vehicle's RAAN turned over the
-leg minus the target's, ``Omega_j(t + D) - Omega_i(t)``.  The leg is possible when
-also ``D >= t_thrust(w)`` (a coast t_C = D - t_thrust >= 0) and ``D >= T_min``.  On each
-*piece* of the drift band (:mod:`~sdc_cvx.physics.low_thrust_pieces`) the cost is linear
-in w and phi has one stationary point at most.
+A low-thrust leg (:mod:`~sdc_cvx.physics.low_thrust`) flying the drift speed w, leaving
+at t and arriving at t + D, closes its RAAN where ``phi(w; t, D)`` is a multiple of 2 pi
+(phi and its parts as :mod:`~sdc_cvx.physics.low_thrust_pieces` defines them); it is
+possible when also ``D >= t_thrust(w)`` (a coast t_C = D - t_thrust >= 0) and ``D >=
+T_min``.  On each *piece* of the drift band the cost is linear in w and phi has one
+stationary point at most.
 
 :func:`cost_at` is the exact cheapest leg between two dates: on each allowed piece, the
 first root of ``phi = 2 pi k`` (any k: every lap count) from the cheap end, within the

@@ -90,26 +90,36 @@ launch_days = [0, 365.25, 730.5]
 """
 
 
+def start_campaign(folder, catalog, scenario_text: str, *args) -> subprocess.Popen:
+    """``python -m sdc_cvx campaign`` on ``catalog`` (written as a CSV) in ``folder``, into
+    ``folder/out``, with Ctrl-C as a terminal's foreground job has it."""
+    csv = folder / "debris.csv"
+    catalog.frame[["id", "a_km", "e", "inc_deg", "raan_deg"]].to_csv(csv, index=False)
+    scenario = folder / "c.toml"
+    scenario.write_text(scenario_text.format(catalog=csv))
+    return subprocess.Popen([sys.executable, "-m", "sdc_cvx", "campaign", str(scenario),
+                             "--out", str(folder / "out"), *args], cwd=folder,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"},
+                            preexec_fn=as_terminal_job)  # fmt: skip
+
+
+def wait_for(run: subprocess.Popen, live, words: str, seconds: float = 300.0) -> None:
+    """Until the live log says ``words`` (or the run ends, or ``seconds`` pass)."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline and run.poll() is None:
+        if live.exists() and words in live.read_text():
+            return
+        time.sleep(0.02)
+
+
 @pytest.mark.slow
 def test_ctrl_c_on_campaign_keeps_the_campaign_in_hand(tmp_path, catalog):
     """Through a real process: one Ctrl-C once a campaign is held ends the search at its
     next step; the folder is written, feasible with its gap (or optimal if it got there)."""
-    csv = tmp_path / "debris.csv"
-    catalog.frame[["id", "a_km", "e", "inc_deg", "raan_deg"]].to_csv(csv, index=False)
-    scenario = tmp_path / "c.toml"
-    scenario.write_text(SCENARIO.format(catalog=csv))
-    out = tmp_path / "out"
-    run = subprocess.Popen([sys.executable, "-m", "sdc_cvx", "campaign", str(scenario),
-                            "--out", str(out), "--workers", "1"], cwd=tmp_path,
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                           env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"},
-                           preexec_fn=as_terminal_job)  # fmt: skip
-    live = tmp_path / "out.log"
-    deadline = time.monotonic() + 300
-    while time.monotonic() < deadline and run.poll() is None:
-        if live.exists() and "launches alone and greedy" in live.read_text():
-            break
-        time.sleep(0.02)
+    out, live = tmp_path / "out", tmp_path / "out.log"
+    run = start_campaign(tmp_path, catalog, SCENARIO, "--workers", "1")
+    wait_for(run, live, "launches alone and greedy")
     run.send_signal(signal.SIGINT)
     stdout, stderr = run.communicate(timeout=600)
     assert run.returncode == 0, stderr
@@ -178,22 +188,9 @@ def test_a_default_run_tells_its_search_in_iterations_csv(tmp_path):
 def test_a_second_ctrl_c_leaves_no_noise_about_leaked_semaphores(tmp_path):
     """Issue 28, 3.3: after a pool stopped at once, multiprocessing's resource tracker
     printed 'There appear to be 5 leaked semaphore objects to clean up at shutdown'."""
-    csv = tmp_path / "debris.csv"
-    sso_catalog(60, seed=3).frame[["id", "a_km", "e", "inc_deg", "raan_deg"]].to_csv(
-        csv, index=False)  # fmt: skip
-    scenario = tmp_path / "c.toml"
-    scenario.write_text(SCENARIO.format(catalog=csv).replace("n = 3", "n = 4"))
-    run = subprocess.Popen([sys.executable, "-m", "sdc_cvx", "campaign", str(scenario),
-                            "--out", "out", "--workers", "2"], cwd=tmp_path,
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                           env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"},
-                           preexec_fn=as_terminal_job)  # fmt: skip
-    live = tmp_path / "out.log"
-    deadline = time.monotonic() + 120
-    while time.monotonic() < deadline and run.poll() is None:
-        if live.exists() and "each launch alone" in live.read_text():
-            break
-        time.sleep(0.02)
+    run = start_campaign(tmp_path, sso_catalog(60, seed=3), SCENARIO.replace("n = 3", "n = 4"),
+                         "--workers", "2")  # fmt: skip
+    wait_for(run, tmp_path / "out.log", "each launch alone")
     time.sleep(1.0)  # the pool's workers at work
     if run.poll() is not None:
         pytest.skip("the campaign ended before the Ctrl-C")

@@ -41,10 +41,9 @@ def load(case):
     return data, catalog
 
 
-@pytest.mark.requires_shared_data("reference_cases/optima.json")
-@pytest.mark.parametrize(("case", "rule"), RUNS)
-@pytest.mark.parametrize("tol_rel", [0.0, 1e-3])
-def test_fixed_path_certificate_matches_the_reference_schedule(case, rule, tol_rel):
+def reference_path_problem(case, rule):
+    """The case's data, its certified optimum under ``rule`` and the schedule problem of
+    that optimum's path (no operations time, the 400-1200 km band)."""
     data, catalog = load(case)
     ref = data[rule]
     orbits = NodeOrbits.from_elements(catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad)
@@ -53,6 +52,14 @@ def test_fixed_path_certificate_matches_the_reference_schedule(case, rule, tol_r
     legs = LegCosts.build(orbits.take(i), orbits.take(j), R_EARTH + 400e3, R_EARTH + 1200e3)
     problem = PathProblem(legs, tuple(range(len(i))), (0.0,) * len(path), data["tmax_days"],
                           0.0, rule, 1.08263e-3)  # fmt: skip
+    return data, ref, problem
+
+
+@pytest.mark.requires_shared_data("reference_cases/optima.json")
+@pytest.mark.parametrize(("case", "rule"), RUNS)
+@pytest.mark.parametrize("tol_rel", [0.0, 1e-3])
+def test_fixed_path_certificate_matches_the_reference_schedule(case, rule, tol_rel):
+    data, ref, problem = reference_path_problem(case, rule)
     schedule = solve_path(problem, tol_mps=0.01, tol_rel=tol_rel)
     allowed = max(0.01, tol_rel * schedule.upper_mps)
     assert schedule.upper_mps - schedule.lower_mps <= allowed + 1e-9
@@ -110,14 +117,7 @@ def test_a_cut_off_schedule_search_still_proves_a_true_bound(case, rule):
     """Issue 27: with a cutoff just below the path's optimum, the DP over the date cells it
     kept once proved more than the optimum (4 mm/s above a schedule that flies on the
     paper case); a campaign reused that as proven.  The cells it dropped count now."""
-    data, catalog = load(case)
-    ref = data[rule]
-    orbits = NodeOrbits.from_elements(catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad)
-    path = [list(catalog.ids).index(k) for k in ref["path"]]
-    i, j = np.array(path[:-1]), np.array(path[1:])
-    legs = LegCosts.build(orbits.take(i), orbits.take(j), R_EARTH + 400e3, R_EARTH + 1200e3)
-    problem = PathProblem(legs, tuple(range(len(i))), (0.0,) * len(path), data["tmax_days"],
-                          0.0, rule, 1.08263e-3)  # fmt: skip
+    data, ref, problem = reference_path_problem(case, rule)
     for below in (0.003, 0.01, 0.03, 0.1, 0.3):
         schedule = solve_path(problem, tol_mps=0.01, cutoff_mps=ref["optimum_dv_mps"] - below)
         assert schedule.lower_mps <= ref["optimum_dv_mps"] + 1e-6, below
