@@ -308,6 +308,20 @@ class Solution:
 
         return figures(self)
 
+    def fly(self, *, force_model: str = "j2", progress=None):
+        """Fly this plan against the debris (issue 26): phasing, manoeuvres, a numerical
+        replay (SGP4 debris), as ``python -m sdc_cvx fly`` does.
+
+        Returns a :class:`sdc_cvx.flight.Flight`; its ``save(run_folder)`` writes
+        ``flight/`` (manoeuvres, rendezvous, CCSDS OEM, figure).  ``force_model``:
+        ``"j2"``, ``"j2-j4"`` or ``"j2-j4-drag"``.  Raises
+        :class:`sdc_cvx.flight.FlightError` when the plan cannot be flown (a catalog
+        without the debris' positions on their orbits, a low-thrust plan).
+        """
+        from .flight import FlightPlan, fly  # scipy, sgp4 and erfa only when asked
+
+        return fly(FlightPlan.from_solution(self), force=force_model, progress=progress)
+
     # -- what the run folder and the summary share (issue 14) ------------------------
     @property
     def operations_dv_mps(self) -> float:

@@ -24,12 +24,14 @@ RULES = {
     "inputs": {"physics"},
     "network": {"inputs", "physics"},
     "milp": set(),
-    "solution": {"inputs", "physics", "report"},  # report's figures: only inside plot()
+    "solution": {"inputs", "physics", "report", "flight"},  # report, flight: inside plot(), fly()
     "planner": {"milp", "network", "inputs", "physics", "solution"},
     "report": {"inputs", "network", "physics"},  # solution: a type hint only
     "study": {"planner", "inputs", "milp", "report", "solution"},
+    "flight": {"physics", "inputs", "solution", "report", "study"},
     "campaign": {"planner", "inputs", "milp", "network", "physics", "solution", "study", "report"},
     "cli": {
+        "flight",
         "physics",
         "inputs",
         "network",
@@ -41,6 +43,7 @@ RULES = {
         "campaign",
     },
     "__init__": {
+        "flight",
         "physics",
         "inputs",
         "network",

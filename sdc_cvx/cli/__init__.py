@@ -1,11 +1,11 @@
 """Command line: ``python -m sdc_cvx`` (or ``sdc-cvx``).
 
-Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``sweep STUDY.toml``,
-``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``.  Exit codes: 0 success,
+Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``fly RUN_DIR``, ``sweep
+STUDY.toml``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``.  Exit codes: 0 success,
 2 invalid input (nothing written), 3 infeasible mission or campaign, 4 solver failure or a
 full disk, 130 interrupted (Ctrl-C) with nothing written.
 
-The group :func:`main` gathers the commands of :mod:`.run`, :mod:`.campaign`,
+The group :func:`main` gathers the commands of :mod:`.run`, :mod:`.campaign`, :mod:`.fly`,
 :mod:`.sweep` and :mod:`.tables` (``edges``, ``catalog``, ``solvers``); they share
 :mod:`.exits` (the exit codes), :mod:`.options`, :mod:`.reading` (the scenario, catalog
 and candidates, read or exit 2) and :mod:`.progress` (a run's progress and its log).
@@ -18,6 +18,7 @@ import click
 
 from .campaign import campaign_command
 from .exits import EXIT_CODES, INFEASIBLE, INPUT_ERROR, INTERRUPTED, SOLVER_FAILED, exit_code
+from .fly import fly_command
 from .progress import RunProgress, quiet_resource_tracker
 from .run import run_command
 from .sweep import sweep_command
@@ -44,6 +45,7 @@ def main():
 
 main.add_command(run_command)
 main.add_command(campaign_command)
+main.add_command(fly_command)
 main.add_command(sweep_command)
 main.add_command(edges_command)
 main.add_command(catalog_command)

@@ -21,6 +21,7 @@ from .exits import (
     exit_code,
     fail,
 )
+from .fly import FORCE_MODELS, fly_folder
 from .options import catalog_options, scenario_argument, selection_options, selection_overrides
 from .progress import RunProgress, interruptible, open_progress_log
 from .reading import build_scenario, check_backend, read_catalog, select_candidates
@@ -90,6 +91,10 @@ if TYPE_CHECKING:
     help="Write the solution JSON to stdout (and nothing else there).",
 )
 @click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
+@click.option("--fly", "fly_plan", is_flag=True,
+              help="Then fly the plan (as 'fly RUN_DIR' does): RUN_DIR/flight/.")
+@click.option("--force-model", type=click.Choice(FORCE_MODELS), default="j2",
+              help="With --fly: the vehicle's force model [j2].")  # fmt: skip
 @click.option("--verbose", is_flag=True, default=None,
               help="Show the MILP backend's own log (on stderr).")  # fmt: skip
 @click.option(
@@ -101,8 +106,8 @@ if TYPE_CHECKING:
 def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km, inclination_deg,
         max_eccentricity, ids, exclude_ids, names, types, strict, n, tmax_days, deorbit_days,
         preopt_days, dv_max_mps, min_transfer_days, transfer, accel_mps2, backend, method, gap,
-        time_limit_s, mip_gap, threads, fallback, out_dir, quiet, json_out, svg, verbose,
-        progress):  # fmt: skip
+        time_limit_s, mip_gap, threads, fallback, out_dir, quiet, json_out, svg, fly_plan,
+        force_model, verbose, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
 
     SCENARIO.toml (optional; default the paper's case) gives the catalog, mission,
@@ -242,6 +247,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
         if start:
             click.echo(start)
         click.echo(f"results   {folder}/solution.json")
+    if fly_plan and solution.status.is_solved:
+        fly_folder(folder, force_model, quiet=quiet, stdout=not json_out)
     if solution.status == RunStatus.OVER_CAPACITY:  # written, but never called flyable
         fail(f"{solution.notes[-1]} (run folder {folder})", INFEASIBLE)
     if not solution.status.is_solved or solution.status in unsettled:

@@ -280,8 +280,8 @@ def read_omm(path: str | os.PathLike, *, start=None, on_invalid: str = "raise") 
     and ``a_km`` follows the same convention as :func:`read_tle` (module docstring),
     so an OMM and the TLE of the same element set give the same catalog.
 
-    Columns are those of :func:`read_tle`; ``name`` is ``OBJECT_NAME`` and
-    ``intl_designator`` is ``OBJECT_ID``.
+    Columns are those of :func:`read_tle`; ``name`` is ``OBJECT_NAME``,
+    ``intl_designator`` is ``OBJECT_ID`` and ``bstar`` is ``BSTAR`` (0 when absent).
 
     Raises
     ------
@@ -320,8 +320,10 @@ def read_omm(path: str | os.PathLike, *, start=None, on_invalid: str = "raise") 
             "mean_anomaly_deg": values["MEAN_ANOMALY"],
             "mean_motion": values["MEAN_MOTION"],
         }
-        rows.append(_element_row(values["NORAD_CAT_ID"], strings["OBJECT_NAME"], epoch, a_km,
-                                 elements, strings["OBJECT_ID"]))  # fmt: skip
+        row = _element_row(values["NORAD_CAT_ID"], strings["OBJECT_NAME"], epoch, a_km,
+                           elements, strings["OBJECT_ID"])  # fmt: skip
+        row["bstar"] = values["BSTAR"]  # B* drag term [1/earth radii], 0 when absent
+        rows.append(row)
         where.append(label)
     _duplicates(rows, where, source, problems)
     return _catalog(rows, source, start, problems, f"OMM records ({kind})", where=where,

@@ -224,7 +224,8 @@ def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True,
     ``e``, ``inc_deg``, ``raan_deg`` (RAAN at ``start``; the TLE's is
     ``raan_epoch_deg``), ``epoch`` (UTC, from the TLE epoch field), and
     ``argp_deg``, ``mean_anomaly_deg``, ``mean_motion_rev_per_day`` (the TLE's Kozai
-    value), ``intl_designator``.
+    value), ``intl_designator``, ``bstar`` (the B* drag term [1/earth radii], as in
+    columns 54-61 of line 1).
 
     Parameters
     ----------
@@ -277,8 +278,9 @@ def read_tle(path: str | os.PathLike, *, start=None, checksum: bool = True,
         if title is not None:
             name = title[1][2:] if title[1].startswith("0 ") else title[1]
         intl = line1[9:17].strip()
-        rows.append(_element_row(one["norad"], name and name.strip(), one["epoch"], a_km,
-                                 two, intl))  # fmt: skip
+        row = _element_row(one["norad"], name and name.strip(), one["epoch"], a_km, two, intl)
+        row["bstar"] = one["bstar"]  # B* drag term [1/earth radii], for SGP4 (sdc_cvx.flight)
+        rows.append(row)
         where.append(f"line {n1}")
     _duplicates(rows, where, source, problems)
     return _catalog(rows, source, start, problems, "TLE element sets", where=where,

@@ -1,0 +1,56 @@
+"""``fly RUN_DIR``: fly a run folder's plan (each mission of a campaign folder) and check it.
+
+Writes ``RUN_DIR/flight/`` (:mod:`sdc_cvx.flight.result`) and prints one line per leg
+and a summary: plan ΔV, flown ΔV, worst miss.  Exit 2 when the plan cannot be flown as
+asked (no phase for a debris, not a run folder, a low-thrust plan), 4 when the folder
+cannot be written, 130 on Ctrl-C (an earlier ``flight/`` is kept whole).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from .exits import INTERRUPTED, SOLVER_FAILED, fail
+
+FORCE_MODELS = ("j2", "j2-j4", "j2-j4-drag")
+
+
+@click.command("fly")
+@click.argument("run_dir", type=click.Path(exists=True, file_okay=False))
+@click.option("--force-model", type=click.Choice(FORCE_MODELS), default="j2", show_default=True,
+              help="The vehicle's force model: J2; J2 with J3-J4; and drag.")  # fmt: skip
+@click.option("--quiet", is_flag=True, help="Only the summary.")
+def fly_command(run_dir, force_model, quiet):
+    """Fly RUN_DIR's plan: phasing, manoeuvres, a numerical replay against the debris
+    (SGP4), and CCSDS OEM export, in RUN_DIR/flight/ (each mission of a campaign folder)."""
+    fly_folder(Path(run_dir), force_model, quiet=quiet)
+
+
+def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
+               stdout: bool = True) -> None:  # fmt: skip
+    """Fly every plan of ``folder`` and write its ``flight/`` (exit on failure); the
+    summary on stdout, or on stderr (``stdout=False``: ``run --json`` keeps stdout JSON)."""
+    from ..errors import SdcError
+    from ..flight import fly, run_folder_plans
+
+    def progress(line: str) -> None:
+        if not quiet:
+            click.echo(line, err=True)
+
+    try:
+        plans = run_folder_plans(folder)
+        for sub, plan in plans:
+            progress(f"flying {sub}: {' -> '.join(plan.catalog.frame['id'])}")
+            flight = fly(plan, force=force_model, progress=progress)
+            flight.save(sub)
+            click.echo(flight.summary(), err=not stdout)
+            click.echo(f"results   {sub / 'flight'}/", err=not stdout)
+    except SdcError as err:
+        fail(str(err))
+    except KeyboardInterrupt:
+        fail("interrupted: the flight folders written so far are kept, the one being "
+             "written is not", INTERRUPTED)  # fmt: skip
+    except OSError as err:
+        fail(f"cannot write {folder}/flight: {err.strerror or err}", SOLVER_FAILED)

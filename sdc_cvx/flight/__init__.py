@@ -1,0 +1,17 @@
+"""A plan that flies (issue 26): phasing, manoeuvres, a numerical replay against the real
+debris (SGP4), and CCSDS OEM export.
+
+``fly(plan)`` flies a :class:`FlightPlan` (from a :class:`~sdc_cvx.solution.Solution` or a
+run folder) and returns a :class:`Flight`, whose ``save(run_folder)`` writes ``flight/``.
+Modules: :mod:`.plan` (what a flight needs of a plan), :mod:`.frames` (TEME, GCRF, the
+Earth's pole), :mod:`.ephemeris` (the debris by SGP4), :mod:`.propagation` (the vehicle by
+numerical integration), :mod:`.replay` (the flight), :mod:`.result` (its tables and files),
+:mod:`.oem` (CCSDS OEM), :mod:`.plot` (``flight.png``).  The mean-element physics it
+needs (secular rates, phasing, impulses as vectors) is in :mod:`sdc_cvx.physics`.
+"""
+
+from .plan import FlightError, FlightPlan, run_folder_plans
+from .replay import fly
+from .result import Flight
+
+__all__ = ["Flight", "FlightError", "FlightPlan", "fly", "run_folder_plans"]

@@ -1,0 +1,182 @@
+"""What a flight needs of a plan: its legs, the mission's limits and the debris' catalog rows.
+
+A :class:`FlightPlan` is built from a :class:`~sdc_cvx.solution.Solution` in memory
+(:meth:`FlightPlan.from_solution`) or from a run folder's ``solution.json`` and the
+catalog its ``scenario.toml`` names (:meth:`FlightPlan.from_run_folder`), so that
+``Solution.fly()`` and ``python -m sdc_cvx fly RUN_DIR`` fly the same thing.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..errors import InputError, SdcError
+from ..inputs.catalog import Catalog
+
+
+class FlightError(InputError):
+    """A plan that cannot be flown as asked: what is missing or wrong, and what to do."""
+
+
+@dataclass(frozen=True)
+class PlannedLeg:
+    """One leg of the plan, in the planner's units (days, km, deg, m/s)."""
+
+    from_id: str
+    to_id: str
+    departure_day: float
+    duration_days: float
+    drift_a_km: float
+    drift_inc_deg: float
+    side: int
+    dv_mps: float
+    laps: int = 0
+
+    @property
+    def arrival_day(self) -> float:
+        return self.departure_day + self.duration_days
+
+
+@dataclass(frozen=True)
+class FlightPlan:
+    """A plan to fly: its legs, the mission's limits and the catalog rows of its debris.
+
+    Attributes
+    ----------
+    legs : tuple of PlannedLeg
+    catalog : Catalog
+        The plan's debris, in path order (their RAANs at ``catalog.start``).
+    tmax_days : float
+        Mission duration limit [days].
+    drift_altitude_km : (float, float)
+        Altitude bounds of the drift orbits [km].
+    plan_dv_mps : float
+        The plan's transfer ΔV [m/s] (its operations at the debris excluded).
+    plan_end_day : float
+        The plan's mission duration [days].
+    """
+
+    legs: tuple[PlannedLeg, ...]
+    catalog: Catalog
+    tmax_days: float
+    drift_altitude_km: tuple[float, float]
+    plan_dv_mps: float
+    plan_end_day: float
+
+    @classmethod
+    def from_solution(cls, solution) -> FlightPlan:
+        """The plan of a :class:`~sdc_cvx.solution.Solution` (impulsive transfers only)."""
+        _check_transfer(solution.mission.transfer, "this solution")
+        if solution.catalog is None:
+            raise FlightError("this solution has no catalog: fly needs the debris' orbits")
+        legs = tuple(PlannedLeg(leg.from_id, leg.to_id, leg.departure_day, leg.duration_days,
+                                leg.drift_a_km, leg.drift_inc_deg, leg.side, leg.dv_mps,
+                                int(leg.phases.get("laps", 0)))
+                     for leg in solution.legs)  # fmt: skip
+        mission = solution.mission
+        return cls._build(legs, solution.catalog, mission.tmax_days, mission.drift_altitude_km,
+                          solution.total_duration_days)  # fmt: skip
+
+    @classmethod
+    def from_run_folder(cls, folder, *, scenario_file=None) -> FlightPlan:
+        """The plan of a run folder (``solution.json``, and the catalog of ``scenario.toml``).
+
+        ``scenario_file``: the scenario naming the catalog, default the folder's own (a
+        campaign's mission folder has the campaign's, :func:`run_folder_plans`).
+
+        Raises
+        ------
+        FlightError
+            Not a run folder of this version (files missing or from another version), or
+            a plan that cannot be flown.
+        """
+        from ..study.scenario import Scenario  # the commands' reader of scenario files
+
+        folder = Path(folder)
+        data = _read_json(folder / "solution.json")
+        if not isinstance(data.get("legs"), list) or "mission" not in data:
+            raise FlightError(f"{folder / 'solution.json'}: not a solution of this version "
+                              "(no 'legs' or 'mission')")  # fmt: skip
+        _check_transfer(data["mission"].get("transfer", data.get("transfer", {}).get(
+            "transfer", "impulsive")), str(folder))  # fmt: skip
+        scenario_file = Path(scenario_file or folder / "scenario.toml")
+        if not scenario_file.exists():
+            raise FlightError(f"{folder}: no scenario.toml, so no catalog to fly against")
+        try:
+            scenario = Scenario.load(scenario_file)
+            if data.get("start"):  # the RAANs at the run's day 0, whatever the catalog holds now
+                scenario = scenario.with_overrides(
+                    catalog_start=pd.Timestamp(data["start"]).to_pydatetime())
+            catalog = scenario.load_catalog(on_invalid="set aside")
+        except SdcError as err:
+            raise FlightError(f"{scenario_file}: {err}") from None
+        try:
+            legs = tuple(PlannedLeg(leg["from"], leg["to"], leg["departure_day"],
+                                    leg["duration_days"], leg["drift_a_km"], leg["drift_inc_deg"],
+                                    int(leg["side"]), leg["dv_mps"], int(leg.get("laps", 0)))
+                         for leg in data["legs"])  # fmt: skip
+        except (KeyError, TypeError, ValueError) as err:
+            raise FlightError(f"{folder / 'solution.json'}: a leg lacks {err} (another "
+                              "version's file?)") from None  # fmt: skip
+        mission = data["mission"]
+        return cls._build(legs, catalog, float(mission["tmax_days"]),
+                          tuple(mission["drift_altitude_km"]),
+                          float(data["total_duration_days"]))  # fmt: skip
+
+    @classmethod
+    def _build(cls, legs, catalog: Catalog, tmax_days, bounds, end_day) -> FlightPlan:
+        if not legs:
+            raise FlightError("the plan has no leg to fly (a mission of one debris)")
+        path = [legs[0].from_id] + [leg.to_id for leg in legs]
+        ids = catalog.frame["id"].astype(str)
+        missing = [name for name in path if name not in set(ids)]
+        if missing:
+            raise FlightError(f"{catalog.source}: no debris {', '.join(map(repr, missing))} of "
+                              "the plan (the catalog changed since the run?)")  # fmt: skip
+        rows = [int(np.flatnonzero(ids.to_numpy() == name)[0]) for name in path]
+        frame = catalog.frame.iloc[rows].reset_index(drop=True)
+        if catalog.start is None:
+            raise FlightError(f"{catalog.source}: no epochs and no start date, so no date to "
+                              "fly from (use a TLE/OMM/GTOC9 catalog, or a CSV with epochs)")
+        subset = Catalog(frame=frame, start=catalog.start, source=catalog.source)
+        return cls(tuple(legs), subset, float(tmax_days), (float(bounds[0]), float(bounds[1])),
+                   float(sum(leg.dv_mps for leg in legs)), float(end_day))  # fmt: skip
+
+    @property
+    def start(self) -> pd.Timestamp:
+        """Day 0 of the plan (UTC)."""
+        return self.catalog.start
+
+
+def run_folder_plans(folder) -> list[tuple[Path, FlightPlan]]:
+    """``(folder, plan)`` of a run folder, or of each mission of a campaign folder."""
+    folder = Path(folder)
+    campaign = folder / "campaign.json"
+    if not campaign.exists():
+        return [(folder, FlightPlan.from_run_folder(folder))]
+    missions = _read_json(campaign).get("missions")
+    if not isinstance(missions, list) or not missions:
+        raise FlightError(f"{campaign}: no missions to fly")
+    subs = [folder / str(entry.get("folder", "")) for entry in missions]
+    return [(sub, FlightPlan.from_run_folder(sub, scenario_file=folder / "scenario.toml"))
+            for sub in subs]  # fmt: skip
+
+
+def _check_transfer(transfer: str, what: str) -> None:
+    if transfer != "impulsive":
+        raise FlightError(f"{what}: a {transfer} plan; fly replays impulsive plans only so "
+                          "far (its spirals as thrust arcs are not built yet)")  # fmt: skip
+
+
+def _read_json(path: Path) -> dict:
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise FlightError(f"{path.parent}: no {path.name}: not a run folder of sdc_cvx") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as err:
+        raise FlightError(f"{path}: unreadable ({err})") from None

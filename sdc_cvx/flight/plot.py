@@ -1,0 +1,70 @@
+"""``flight.png``: what the replay found, per leg, and the altitude flown against the plan's."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..physics.orbits import SECONDS_PER_DAY
+from ..report.atomic import write_figure
+
+if TYPE_CHECKING:
+    from .result import Flight
+
+FIGURE_SIZE = (9.0, 7.0)
+
+
+def plan_altitude(flight: Flight) -> tuple[np.ndarray, np.ndarray]:
+    """The plan's altitude [km] against days: at each debris, then on each drift orbit
+    (the transfers drawn as instants, as the model has them)."""
+    frame = flight.plan.catalog.frame
+    alt = (frame["a_km"].to_numpy() * 1e3 - flight.force.r_eq) / 1e3
+    days, heights = [0.0], [alt[0]]
+    for k, leg in enumerate(flight.plan.legs):
+        drift = leg.drift_a_km - flight.force.r_eq / 1e3
+        days += [leg.departure_day, leg.departure_day, leg.arrival_day, leg.arrival_day]
+        heights += [alt[k], drift, drift, alt[k + 1]]
+    days.append(flight.end_day)
+    heights.append(alt[-1])
+    return np.array(days), np.array(heights)
+
+
+def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
+    """Write ``flight.png``: misses and ΔV per leg (top), altitudes (bottom)."""
+    fig = Figure(figsize=FIGURE_SIZE, layout="constrained")
+    top, bottom = fig.subplots(2, 1)
+    meetings = flight.rendezvous
+    legs = np.arange(1, len(meetings) + 1)
+    width = 0.38
+    top.bar(legs - width / 2, [m.phasing_dv_mps for m in meetings], width, label="phasing ΔV",
+            color="#6baed6")  # fmt: skip
+    top.bar(legs + width / 2, [m.correction_dv_mps for m in meetings], width,
+            label="correction ΔV", color="#fd8d3c")  # fmt: skip
+    top.axhline(0.0, color="#444444", lw=0.8)
+    top.set_ylabel("ΔV [m/s]")
+    top.set_xticks(legs, [f"leg {k}\n→ {m.target}" for k, m in zip(legs, meetings, strict=True)])
+    misses = top.twinx()
+    misses.plot(legs, [m.miss_km for m in meetings], "ko", label="miss [km]")
+    misses.set_ylabel("position miss at arrival [km]")
+    misses.set_ylim(bottom=0.0)
+    handles = top.get_legend_handles_labels()
+    extra = misses.get_legend_handles_labels()
+    top.legend(handles[0] + extra[0], handles[1] + extra[1], fontsize=9, loc="upper left")
+    top.set_title(f"Flown: {flight.flown_dv_mps:.2f} m/s against the plan's "
+                  f"{flight.plan_dv_mps:.2f} m/s; worst miss {flight.worst_miss_km:.2f} km",
+                  fontsize=11)  # fmt: skip
+    days, altitude = flight.altitude_profile()
+    step = max(len(days) // 20000, 1)  # a readable line, not every sample
+    bottom.plot(days[::step], altitude[::step], lw=0.4, color="#08519c",
+                label="propagated (osculating)")  # fmt: skip
+    plan_days, plan_alt = plan_altitude(flight)
+    bottom.plot(plan_days, plan_alt, lw=1.5, color="#d62728", label="plan (mean)")
+    for meeting in meetings:
+        bottom.axvline(meeting.epoch_s / SECONDS_PER_DAY, color="#999999", lw=0.6, ls=":")
+    bottom.set_xlabel(f"days after {flight.plan.start:%Y-%m-%d %H:%M} UTC")
+    bottom.set_ylabel("altitude [km]")
+    bottom.legend(fontsize=9, loc="best")
+    write_figure(fig, Path(path), "png", dpi)

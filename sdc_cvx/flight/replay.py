@@ -1,0 +1,317 @@
+"""Fly a plan: phase each leg, place its impulses, propagate the vehicle, meet the real debris.
+
+For each leg (issue 26):
+
+1. **Phasing** (:func:`~sdc_cvx.physics.phasing.phase_leg`): the departure node and the
+   drift radius that bring the vehicle to the debris itself, in the mean-element model,
+   arriving no later than the mission can spare.
+2. **Impulses as vectors** (:mod:`~sdc_cvx.physics.impulses`), each computed from the
+   vehicle's propagated state at its epoch: ``depart`` (onto the transfer orbit),
+   ``drift`` (onto the drift orbit), ``leave_drift``, ``arrive`` (onto the target's orbit),
+   each Hohmann transfer's plane change on its higher-radius impulse (Eq. 13).  The two
+   circularising impulses aim at orbit-*averaged* semi-major axes (the drift's, then the
+   debris' own as SGP4 flies it), by a few one-orbit shots: a mean element taken as an
+   osculating one would miss by kilometres.
+3. **Rendezvous**: the vehicle against the debris (SGP4, in GCRF) after ``arrive``: the
+   position and velocity miss, the orbit-averaged differences of a, i and RAAN; then a
+   ``correction`` impulse at the vehicle's next crossing of the debris' plane closes the
+   plane (the semi-major axis was closed by ``arrive``).  The along-track miss is left to
+   the proximity operations, which this model does not fly.
+4. The next leg leaves from where the vehicle is (its phase measured against the debris).
+
+The flown ΔV is the sum of the impulses as flown; per leg, ``phasing_dv`` is the phased
+leg's cost less the plan's (both in the mean-element model) and ``correction_dv`` the
+flown impulses less the phased model's: plan + phasing + corrections = flown.
+
+References
+----------
+.. [1] M. Cerf, "Multiple Space Debris Collecting Mission — Debris Selection and Trajectory
+   Optimization", Journal of Optimization Theory and Applications 156(3), 761–796, 2013.
+.. [2] D. A. Vallado, *Fundamentals of Astrodynamics and Applications*, 4th ed.,
+   Microcosm Press, 2013, §6.6 (phasing), §9.6 (secular J2 effects).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..physics.elements import secular_rates
+from ..physics.impulses import (
+    inclination,
+    plane_towards,
+    plane_with_inclination,
+    with_horizontal_speed,
+)
+from ..physics.orbits import SECONDS_PER_DAY
+from ..physics.phasing import MeanOrbit, leg_at, phase_leg
+from .corrections import (
+    correct_eccentricity,
+    correct_plane,
+    debris_eccentricity,
+    turned_eccentricity,
+)
+from .ephemeris import DebrisEphemeris
+from .frames import earth_pole_gcrf
+from .plan import FlightPlan
+from .propagation import ForceModel, averaged_orbit, orbit_average, propagate
+from .rates import RATE_MODES, SAMPLES, drift_factors, fitted_orbit, mean_state
+from .result import Flight, Rendezvous
+from .track import Track
+
+SHOTS = 3
+"""One-orbit shots of a circularising impulse on the averaged orbit it aims at."""
+KINDS = ("depart", "drift", "trim", "leave_drift", "arrive", "correction")
+"""The impulses of a leg, in time order (``trim`` and ``correction`` may be several)."""
+TRIMS = (0.5, 0.2, 0.05, 0.01)
+"""When the drift's mean motion is trimmed: at these fractions of the drift left."""
+
+
+def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris=None,
+        progress=None) -> Flight:  # fmt: skip
+    """Fly ``plan`` through its phased impulses against the debris propagated by SGP4.
+
+    Parameters
+    ----------
+    plan : FlightPlan
+    force : {"j2", "j2-j4", "j2-j4-drag"}
+        The vehicle's force model (:meth:`ForceModel.named`).
+    rates : {"fitted", "model"}
+        The mean rates the phasing uses (:mod:`~sdc_cvx.flight.rates`): measured on the
+        debris' SGP4 states and a propagation of the drift orbit, or the first-order J2
+        rates of the catalog's elements (the planner's).
+    ephemeris : DebrisEphemeris, optional
+        Where the debris are: default SGP4 from the catalog's elements; anything with
+        its ``state(position, seconds)``, ``arglat_at_start()`` and ``a_m`` will do.
+    progress : callable, optional
+        Called with a line of text after each leg.
+
+    Returns
+    -------
+    Flight
+    """
+    if rates not in RATE_MODES:
+        raise ValueError(f"rates must be one of {RATE_MODES}, got {rates!r}")
+    started = time.perf_counter()
+    model = ForceModel.named(force)
+    consts = dict(j2=model.j2, mu=model.mu, r_eq=model.r_eq)
+    if ephemeris is None:
+        ephemeris = DebrisEphemeris.from_catalog(plan.catalog)
+    frame = plan.catalog.frame
+    arglat0 = ephemeris.arglat_at_start()
+    orbits = [MeanOrbit.from_elements(row.a_km * 1e3, row.e, np.radians(row.inc_deg),
+                                      np.radians(row.raan_deg), arglat0[k], **consts)
+              for k, row in enumerate(frame.itertuples())]  # fmt: skip
+    ids = frame["id"].astype(str).tolist()
+    bounds = tuple(model.r_eq + 1e3 * h for h in plan.drift_altitude_km)
+    slack = max(plan.tmax_days - plan.plan_end_day, 0.0) * SECONDS_PER_DAY
+    t0 = plan.legs[0].departure_day * SECONDS_PER_DAY
+    r0, v0 = ephemeris.state(0, np.array([t0]))
+    track = Track(t0, r0[0], v0[0])
+    maneuvers, meetings = [], []
+    delay = 0.0  # how much later than the plan the vehicle is ready [s]
+    for k, leg in enumerate(plan.legs):
+        t_ready = max(leg.departure_day * SECONDS_PER_DAY + delay, track.t)
+        pole = _pole(plan, t_ready + 0.5 * leg.duration_days * SECONDS_PER_DAY)
+        a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
+        latest = leg.arrival_day * SECONDS_PER_DAY + slack
+        origin = _vehicle_orbit(track, orbits[k], model, pole)
+        target, factors = orbits[k + 1], (1.0, 1.0)
+        if rates == "fitted":
+            target = fitted_orbit(ephemeris, k + 1, t_ready, latest + SECONDS_PER_DAY, target,
+                                  model, pole)  # fmt: skip
+            factors = drift_factors(a_plan, i_plan, t_ready, model, pole)
+        consts["drift_factors"] = factors
+        try:
+            phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
+                                        laps=leg.laps, a_bounds=bounds, latest_arrival=latest,
+                                        **consts)  # fmt: skip
+        except ValueError:  # no phasing found: the plan's point, unphased, flown as it is
+            phased, in_time = None, False
+        point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
+        plan_model_dv = float(point["impulses"].sum())
+        epochs = point["epochs"] if phased is None else phased.epochs
+        a_drift = a_plan if phased is None else phased.a_drift
+        flown = _fly_leg(track, k, epochs, origin, a_drift, i_plan, factors, ephemeris, model,
+                         pole)  # fmt: skip
+        maneuvers += flown["maneuvers"]
+        meeting = flown["meeting"]
+        leg_dv = sum(m.dv_mps for m in flown["maneuvers"])
+        phased_dv = plan_model_dv if phased is None else phased.dv
+        delay = epochs[3] - leg.arrival_day * SECONDS_PER_DAY
+        meetings.append(Rendezvous(
+            target=ids[k + 1], **meeting,
+            correction_dv_mps=leg_dv - phased_dv,
+            phasing_shift_h=float(epochs[0] - t_ready) / 3600.0,
+            phasing_dv_mps=phased_dv - plan_model_dv,
+            delay_days=delay / SECONDS_PER_DAY, in_time=bool(in_time),
+        ))  # fmt: skip
+        if progress is not None:
+            progress(f"leg {k + 1}/{len(plan.legs)} {ids[k]} -> {ids[k + 1]}: miss "
+                     f"{meeting['miss_km']:.2f} km, phasing {phased_dv - plan_model_dv:+.2f} "
+                     f"m/s, correction {leg_dv - phased_dv:+.2f} m/s")  # fmt: skip
+    end = track.t + 2.0 * np.pi / orbits[-1].arglat_rate  # one more orbit with the last debris
+    track.coast(end, model, _pole(plan, end))
+    return Flight(plan=plan, maneuvers=tuple(maneuvers), rendezvous=tuple(meetings),
+                  segments=tuple(track.segments), force=model, rates=rates,
+                  seconds=time.perf_counter() - started)  # fmt: skip
+
+
+def _pole(plan: FlightPlan, t: float) -> np.ndarray:
+    """Earth's rotation axis in GCRF at ``t`` [s after day 0] (constant over a leg: it
+    moves about 1e-4 rad a year)."""
+    import pandas as pd
+
+    return earth_pole_gcrf(plan.start + pd.to_timedelta([t], unit="s"))[0]
+
+
+def _vehicle_orbit(track: Track, guess: MeanOrbit, model: ForceModel, pole) -> MeanOrbit:
+    """Where the vehicle is: its mean orbit over the next revolution (first-order rates,
+    which carry it only the few hours to its departure node)."""
+    period = 2.0 * np.pi / guess.arglat_rate
+    times = track.t + np.linspace(0.0, period, SAMPLES, endpoint=False)
+    arc = propagate(track.r, track.v, track.t, times[-1], model, pole=pole, t_eval=times)
+    now = mean_state(arc.t, arc.r, arc.v, mu=model.mu, pole=pole)
+    mine = MeanOrbit.from_elements(now.a, guess.e, now.inc, now.raan, now.arglat, j2=model.j2,
+                                   mu=model.mu, r_eq=model.r_eq)  # fmt: skip
+    return mine._replace(raan=now.raan - mine.raan_rate * now.t,
+                         arglat=now.arglat - mine.arglat_rate * now.t)
+
+
+def _debris_orbit(ephemeris, k, t, period, model, pole):
+    """Debris ``k``'s orbit averaged over one period from ``t`` (SGP4 states)."""
+    times = t + np.linspace(0.0, period, SAMPLES, endpoint=False)
+    r, v = ephemeris.state(k, times)
+    return orbit_average(r, v, mu=model.mu, pole=pole)
+
+
+def _aim(track: Track, model, pole, a_goal, normal):
+    """The velocity in the plane ``normal`` whose orbit averages to ``a_goal`` (its radial
+    part kept: an eccentric drift orbit precesses as a circular one does; the arrival's
+    eccentricity is corrected after it, :mod:`~sdc_cvx.flight.corrections`)."""
+    r_hat = track.r / np.linalg.norm(track.r)
+    radial = np.dot(track.v, r_hat)
+    speed = np.sqrt(model.mu * (2.0 / np.linalg.norm(track.r) - 1.0 / a_goal) - radial**2)
+    for _ in range(SHOTS):
+        v_new = with_horizontal_speed(track.r, track.v, normal, speed)
+        averaged = averaged_orbit(track.r, v_new, track.t, model, pole=pole, samples=SAMPLES)
+        # vis-viva: d(a) = 2 a^2 v d(v) / mu
+        speed += (a_goal - averaged.a) * model.mu / (2.0 * averaged.a**2 * speed)
+    return with_horizontal_speed(track.r, track.v, normal, speed)
+
+
+def _transfer(track: Track, normal, r_apse, model) -> np.ndarray:
+    """Onto a transfer orbit whose opposite apse is at ``r_apse`` [m] (Eq. 12; the radial
+    velocity kept): vis-viva with ``a = (r + r_apse) / 2``."""
+    r = np.linalg.norm(track.r)
+    radial = np.dot(track.v, track.r / r)
+    speed2 = model.mu * (2.0 / r - 2.0 / (r + r_apse)) - radial**2
+    return with_horizontal_speed(track.r, track.v, normal, np.sqrt(speed2))
+
+
+def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
+           pole) -> list:  # fmt: skip
+    """Coast on the drift orbit to ``t_leave`` [s], trimming its mean motion on the way so
+    that the vehicle is at the node there, as the phasing has it (:data:`TRIMS`).
+
+    At each trim the vehicle's mean state (one orbit averaged) and its measured rates
+    predict its argument of latitude at ``t_leave``; a tangential impulse changes the
+    semi-major axis by ``da = -2/3 a d(n) / n`` so that it reaches the nearest node
+    (a multiple of pi) instead: millimetres per second, where an error of 1e-7 in the mean
+    motion would put the vehicle 10 km off after half a year of coasting.
+    """
+    trims = []
+    start, span = track.t, t_leave - track.t
+    for fraction in TRIMS:
+        t_trim = t_leave - fraction * span
+        if t_trim < start + 0.5 * SECONDS_PER_DAY or t_leave - t_trim < 0.25 * SECONDS_PER_DAY:
+            continue
+        track.coast(t_trim, model, pole)
+        guess = secular_rates(np.linalg.norm(track.r), 0.0, 0.0, j2=model.j2, mu=model.mu,
+                              r_eq=model.r_eq).arglat  # fmt: skip
+        times = track.t + np.linspace(0.0, 2.0 * np.pi / guess, SAMPLES, endpoint=False)
+        arc = propagate(track.r, track.v, track.t, times[-1], model, pole=pole, t_eval=times)
+        now = mean_state(arc.t, arc.r, arc.v, mu=model.mu, pole=pole)
+        rate = secular_rates(now.a, 0.0, now.inc, j2=model.j2, mu=model.mu,
+                             r_eq=model.r_eq).arglat * factors[1]  # fmt: skip
+        predicted = now.arglat + rate * (t_leave - now.t)
+        error = np.pi * np.round(predicted / np.pi) - predicted
+        da = -2.0 / 3.0 * now.a * (error / (t_leave - track.t)) / rate
+        speed = np.linalg.norm(track.v)
+        r_hat = track.r / np.linalg.norm(track.r)
+        horizontal = np.linalg.norm(track.v - np.dot(track.v, r_hat) * r_hat)
+        dv = 0.5 * speed * da / now.a  # vis-viva, tangential
+        trims.append(track.impulse(leg, "trim", with_horizontal_speed(
+            track.r, track.v, track.normal, horizontal + dv)))  # fmt: skip
+    track.coast(t_leave, model, pole)
+    return trims
+
+
+def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, factors, ephemeris,
+             model: ForceModel, pole) -> dict:  # fmt: skip
+    """The four impulses of leg ``k`` at ``epochs``, the rendezvous and the correction."""
+    leg, out = k + 1, []
+    up_first = a_drift >= origin.a  # the plane change on the higher-radius impulse (Eq. 13)
+    track.coast(epochs[0], model, pole)
+    plane = np.cross(track.r, track.v)
+    plane /= np.linalg.norm(plane)
+    if not up_first:  # plane change now, to the drift inclination (its osculating offset kept)
+        goal = inclination(track.r, track.v, pole) + (i_drift - origin.inc)
+        plane = plane_with_inclination(track.r, track.v, pole, goal)
+    out.append(track.impulse(leg, "depart", _transfer(track, plane, a_drift, model)))
+    track.coast(epochs[1], model, pole)
+    if up_first:
+        goal = inclination(track.r, track.v, pole) + (i_drift - origin.inc)
+        plane = plane_with_inclination(track.r, track.v, pole, goal)
+    else:
+        plane = plane_towards(track.r, track.v, plane)
+    out.append(track.impulse(leg, "drift", _aim(track, model, pole, a_drift, plane)))
+    # the target's orbit as SGP4 flies it, averaged over the orbit after the rendezvous
+    period = 2.0 * np.pi * np.sqrt(ephemeris.a_m[k + 1] ** 3 / model.mu)
+    goal_orbit = _debris_orbit(ephemeris, k + 1, epochs[3], period, model, pole)
+    # the drift orbit takes the target's eccentricity now, so that the vehicle arrives on
+    # the orbit's shape too (its apsides turn at the drift's rate meanwhile)
+    turn = secular_rates(a_drift, 0.0, i_drift, j2=model.j2, mu=model.mu,
+                         r_eq=model.r_eq).argp * (epochs[2] - track.t)  # fmt: skip
+    wanted = turned_eccentricity(debris_eccentricity(ephemeris, k + 1, epochs[3], model),
+                                 goal_orbit.normal, track, pole, turn)  # fmt: skip
+    out += correct_eccentricity(track, leg, wanted, model, pole)
+    r_meet, _ = ephemeris.state(k + 1, np.array([epochs[3]]))
+    out += _drift(track, leg, epochs[2], factors, model, pole)
+    plane = np.cross(track.r, track.v)
+    plane /= np.linalg.norm(plane)
+    if goal_orbit.a < a_drift:  # going down: the plane change on this, higher, impulse
+        plane = plane_towards(track.r, track.v, goal_orbit.normal)
+    out.append(track.impulse(leg, "leave_drift",
+                        _transfer(track, plane, np.linalg.norm(r_meet), model)))  # fmt: skip
+    track.coast(epochs[3], model, pole)
+    if goal_orbit.a >= a_drift:  # going up: the plane change on this impulse
+        plane = plane_towards(track.r, track.v, goal_orbit.normal)
+    else:
+        plane = track.normal
+    out.append(track.impulse(leg, "arrive", _aim(track, model, pole, goal_orbit.a, plane)))
+    differences = _differences(track, goal_orbit, model, pole)
+    out += correct_eccentricity(track, leg, debris_eccentricity(ephemeris, k + 1, track.t, model),
+                                model, pole)  # fmt: skip
+    out.append(correct_plane(track, leg, ephemeris, k + 1, model, pole))
+    r_d, v_d = ephemeris.state(k + 1, np.array([track.t]))
+    meeting = differences | {
+        "epoch_s": track.t,  # the rendezvous: the vehicle on the debris' orbit
+        "miss_km": float(np.linalg.norm(track.r - r_d[0]) / 1e3),
+        "miss_mps": float(np.linalg.norm(track.v - v_d[0])),
+    }
+    return {"maneuvers": [m for m in out if m is not None], "meeting": meeting}
+
+
+def _differences(track: Track, goal_orbit, model, pole) -> dict:
+    """The vehicle's orbit-averaged a, i and RAAN less the debris' (``goal_orbit``)."""
+    mine = averaged_orbit(track.r, track.v, track.t, model, pole=pole, samples=SAMPLES)
+    draan = np.mod(mine.raan - goal_orbit.raan + np.pi, 2.0 * np.pi) - np.pi
+    return {
+        "da_km": float(mine.a - goal_orbit.a) / 1e3,
+        "di_deg": float(np.degrees(mine.inc - goal_orbit.inc)),
+        "draan_deg": float(np.degrees(draan)),
+    }
+
+

@@ -1,0 +1,209 @@
+"""A flown plan: its manoeuvres, its rendezvous, its trajectory, and the files that hold them.
+
+:class:`Flight` is what :func:`~sdc_cvx.flight.replay.fly` returns.  ``save(run_folder)``
+writes ``flight/`` inside a run folder, the whole folder at once (written aside, then
+swapped in, as the run folder itself is):
+
+- ``maneuvers.csv``: ``epoch_utc, leg, kind, dv_mps, dv_r_mps, dv_t_mps, dv_n_mps,
+  dv_x_mps, dv_y_mps, dv_z_mps`` (RTN: radial, transverse, normal of the state before the
+  impulse; x, y, z in GCRF);
+- ``rendezvous.csv``: per arrival ``epoch_utc, target, miss_km, miss_mps, da_km, di_deg,
+  draan_deg, correction_dv_mps, phasing_shift_h, phasing_dv_mps``, then ``delay_days``
+  (arrival after the plan's) and ``in_time``; measured just after the ``arrive`` impulse;
+- ``trajectory.oem``: CCSDS OEM 2.0 (KVN, GCRF, UTC), one segment per arc between impulses;
+- ``flight.json``: the totals, the force model and the status; ``flight.png``: misses and
+  ΔV per leg, the propagated altitude against the plan's.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..physics.orbits import SECONDS_PER_DAY
+from ..report.atomic import write_atomic
+from .oem import write_oem
+from .plan import FlightPlan
+from .propagation import ForceModel
+
+FLIGHT_FOLDER = "flight"
+MANEUVER_COLUMNS = ("epoch_utc", "leg", "kind", "dv_mps", "dv_r_mps", "dv_t_mps", "dv_n_mps",
+                    "dv_x_mps", "dv_y_mps", "dv_z_mps")  # fmt: skip
+RENDEZVOUS_COLUMNS = ("epoch_utc", "target", "miss_km", "miss_mps", "da_km", "di_deg",
+                      "draan_deg", "correction_dv_mps", "phasing_shift_h", "phasing_dv_mps",
+                      "delay_days", "in_time")  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Maneuver:
+    """One impulse: epoch [s after the plan's day 0], leg (1-based), kind, vectors [m/s]."""
+
+    epoch_s: float
+    leg: int
+    kind: str
+    dv_gcrf: np.ndarray
+    dv_rtn: np.ndarray
+
+    @property
+    def dv_mps(self) -> float:
+        return float(np.linalg.norm(self.dv_gcrf))
+
+
+@dataclass(frozen=True)
+class Rendezvous:
+    """One arrival, measured after its ``arrive`` impulse (see the module docstring)."""
+
+    epoch_s: float
+    target: str
+    miss_km: float
+    miss_mps: float
+    da_km: float
+    di_deg: float
+    draan_deg: float
+    correction_dv_mps: float
+    phasing_shift_h: float
+    phasing_dv_mps: float
+    delay_days: float
+    in_time: bool
+
+
+@dataclass(frozen=True)
+class Flight:
+    """The plan flown: manoeuvres, rendezvous, trajectory segments (see the module)."""
+
+    plan: FlightPlan
+    maneuvers: tuple[Maneuver, ...]
+    rendezvous: tuple[Rendezvous, ...]
+    segments: tuple
+    force: ForceModel
+    rates: str
+    seconds: float
+
+    # -- totals ---------------------------------------------------------------------
+    @property
+    def plan_dv_mps(self) -> float:
+        """The plan's transfer ΔV [m/s] (operations at the debris excluded)."""
+        return self.plan.plan_dv_mps
+
+    @property
+    def flown_dv_mps(self) -> float:
+        """Sum of the impulses flown, corrections included [m/s]."""
+        return float(sum(m.dv_mps for m in self.maneuvers))
+
+    @property
+    def worst_miss_km(self) -> float:
+        return float(max(r.miss_km for r in self.rendezvous))
+
+    @property
+    def end_day(self) -> float:
+        """Mission duration as flown [days]: the plan's, later by the last arrival's delay."""
+        return self.plan.plan_end_day + self.rendezvous[-1].delay_days
+
+    @property
+    def within_tmax(self) -> bool:
+        return self.end_day <= self.plan.tmax_days + 1e-9
+
+    @property
+    def status(self) -> str:
+        """``flown``; ``late`` when the phased plan ends after T_max."""
+        return "flown" if self.within_tmax else "late"
+
+    def summary(self) -> str:
+        extra = 100.0 * (self.flown_dv_mps / self.plan_dv_mps - 1.0) if self.plan_dv_mps else 0.0
+        limit = "within" if self.within_tmax else "LATE: beyond"
+        limit += f" T_max {self.plan.tmax_days:g} d"
+        return (f"flight    plan {self.plan_dv_mps:.2f} m/s, flown {self.flown_dv_mps:.2f} m/s "
+                f"({extra:+.2f} %), worst miss {self.worst_miss_km:.2f} km; ends day "
+                f"{self.end_day:.2f}, {limit} ({self.force.describe()['name']}, "
+                f"{self.rates} rates, {self.seconds:.0f} s)")  # fmt: skip
+
+    # -- tables -----------------------------------------------------------------------
+    def epochs(self, seconds) -> pd.DatetimeIndex:
+        """UTC epochs of ``seconds`` after the plan's day 0."""
+        return self.plan.start + pd.to_timedelta(np.atleast_1d(seconds), unit="s")
+
+    def maneuvers_frame(self) -> pd.DataFrame:
+        rtn_names, gcrf_names = ("dv_r_mps", "dv_t_mps", "dv_n_mps"), MANEUVER_COLUMNS[7:]
+        rows = [{"leg": m.leg, "kind": m.kind, "dv_mps": m.dv_mps,
+                 **dict(zip(rtn_names, map(float, m.dv_rtn), strict=True)),
+                 **dict(zip(gcrf_names, map(float, m.dv_gcrf), strict=True))}
+                for m in self.maneuvers]  # fmt: skip
+        frame = pd.DataFrame(rows, columns=MANEUVER_COLUMNS[1:])
+        frame.insert(0, "epoch_utc", _iso(self.epochs([m.epoch_s for m in self.maneuvers])))
+        return frame
+
+    def rendezvous_frame(self) -> pd.DataFrame:
+        rows = [{name: getattr(r, name) for name in RENDEZVOUS_COLUMNS[1:]}
+                for r in self.rendezvous]  # fmt: skip
+        frame = pd.DataFrame(rows, columns=RENDEZVOUS_COLUMNS[1:])
+        frame.insert(0, "epoch_utc", _iso(self.epochs([r.epoch_s for r in self.rendezvous])))
+        return frame
+
+    def to_dict(self) -> dict:
+        return {
+            "status": self.status,
+            "plan_dv_mps": self.plan_dv_mps,
+            "flown_dv_mps": self.flown_dv_mps,
+            "phasing_dv_mps": float(sum(r.phasing_dv_mps for r in self.rendezvous)),
+            "correction_dv_mps": float(sum(r.correction_dv_mps for r in self.rendezvous)),
+            "worst_miss_km": self.worst_miss_km,
+            "end_day": self.end_day,
+            "tmax_days": self.plan.tmax_days,
+            "start": self.plan.start.isoformat(),
+            "force": self.force.describe(),
+            "rates": self.rates,
+            "seconds": self.seconds,
+        }
+
+    # -- files ------------------------------------------------------------------------
+    def save(self, run_folder) -> list[str]:
+        """Write ``run_folder/flight/`` at once (aside, then swapped in); the paths written."""
+        run_folder = Path(run_folder)
+        target = run_folder / FLIGHT_FOLDER
+        stage = run_folder / f".{FLIGHT_FOLDER}.{os.getpid()}.partial"
+        shutil.rmtree(stage, ignore_errors=True)
+        stage.mkdir()
+        try:
+            names = self._write(stage)
+            old = run_folder / f".{FLIGHT_FOLDER}.{os.getpid()}.old"
+            if target.exists():
+                os.replace(target, old)
+            os.replace(stage, target)
+            shutil.rmtree(old, ignore_errors=True)
+        except BaseException:
+            shutil.rmtree(stage, ignore_errors=True)
+            raise
+        return [str(target / name) for name in names]
+
+    def _write(self, folder: Path) -> list[str]:
+        write_atomic(folder / "maneuvers.csv",
+                     self.maneuvers_frame().to_csv(index=False, float_format="%.10g"))  # fmt: skip
+        write_atomic(folder / "rendezvous.csv",
+                     self.rendezvous_frame().to_csv(index=False, float_format="%.10g"))  # fmt: skip
+        write_atomic(folder / "flight.json", json.dumps(self.to_dict(), indent=2) + "\n")
+        segments = [(self.epochs(t), r, v) for t, r, v in self.segments]
+        first = self.plan.catalog.frame["id"].iloc[0]
+        write_oem(folder / "trajectory.oem", segments, object_name="SDC_CVX VEHICLE",
+                  object_id=f"SDC_CVX-{first}",
+                  comments=(f"sdc_cvx flown plan {' -> '.join(self.plan.catalog.frame['id'])}",
+                            f"force model {self.force.describe()}"))  # fmt: skip
+        from .plot import flight_figure  # matplotlib only when the files are written
+
+        flight_figure(self, folder / "flight.png")
+        return ["maneuvers.csv", "rendezvous.csv", "flight.json", "trajectory.oem", "flight.png"]
+
+    def altitude_profile(self) -> tuple[np.ndarray, np.ndarray]:
+        """Propagated altitude [km] against days after day 0 (every OEM sample)."""
+        days = np.concatenate([t for t, _, _ in self.segments]) / SECONDS_PER_DAY
+        radius = np.concatenate([np.linalg.norm(r, axis=1) for _, r, _ in self.segments])
+        return days, (radius - self.force.r_eq) / 1e3
+
+
+def _iso(epochs: pd.DatetimeIndex) -> list[str]:
+    return [e.strftime("%Y-%m-%dT%H:%M:%S.%fZ") for e in epochs.tz_convert("UTC")]

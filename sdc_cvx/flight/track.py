@@ -1,0 +1,50 @@
+"""The vehicle as it flies: its state, the arcs flown so far, and the impulses it takes.
+
+A :class:`Track` coasts by numerical propagation (:func:`~sdc_cvx.flight.propagation.propagate`)
+and keeps each arc between two impulses as one trajectory segment, sampled as the OEM
+wants them (:func:`~sdc_cvx.flight.oem.sample_times`); :meth:`Track.impulse` changes
+its velocity and records the :class:`~sdc_cvx.flight.result.Maneuver`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..physics.impulses import rtn
+from .oem import sample_times
+from .propagation import ForceModel, propagate
+from .result import Maneuver
+
+
+@dataclass
+class Track:
+    """The vehicle's state at ``t`` [s after day 0]: ``r`` [m], ``v`` [m/s] (GCRF)."""
+
+    t: float
+    r: np.ndarray
+    v: np.ndarray
+    segments: list = field(default_factory=list)
+
+    def coast(self, t_end: float, force: ForceModel, pole: np.ndarray) -> None:
+        """Propagate to ``t_end`` [s] and keep the arc's samples as one segment."""
+        if t_end <= self.t:
+            return
+        samples = sample_times(self.t, t_end)
+        arc = propagate(self.r, self.v, self.t, t_end, force, pole=pole, t_eval=samples)
+        self.segments.append((arc.t, arc.r, arc.v))
+        self.t, self.r, self.v = t_end, arc.r1, arc.v1
+
+    def impulse(self, leg: int, kind: str, v_new) -> Maneuver:
+        """Change the velocity to ``v_new`` [m/s] now; the manoeuvre that did it."""
+        dv = np.asarray(v_new, dtype=float) - self.v
+        maneuver = Maneuver(self.t, leg, kind, dv, rtn(self.r, self.v, dv))
+        self.v = np.asarray(v_new, dtype=float)
+        return maneuver
+
+    @property
+    def normal(self) -> np.ndarray:
+        """Unit normal of the osculating plane."""
+        h = np.cross(self.r, self.v)
+        return h / np.linalg.norm(h)
