@@ -157,6 +157,11 @@ def run_command(scenario_file, catalog_path, catalog_format, start, altitude_km,
             click.echo(message, err=True)
 
     catalog, _ = select_candidates(catalog, scenario, info)
+    if fly_plan:  # refused before the search: exit 2 means nothing written
+        from ..flight.ephemeris import missing_phase
+
+        if (problem := missing_phase(catalog)) is not None:
+            fail(f"{problem} (asked by --fly)")
     try:
         mission.check_candidates(catalog)
     except MissionError as err:

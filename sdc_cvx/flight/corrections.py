@@ -1,7 +1,9 @@
 """After the arrival: the impulses that close what the transfer left (issue 26, item 3).
 
 The arrival impulse puts the vehicle on the debris' semi-major axis; what is left is the
-orbit's shape and plane, which the planner's circular model does not see:
+orbit's shape and plane, which the planner's circular model does not see.  Most of the
+shape is changed on the way at no cost (:func:`node_split`: the transfers' impulses are
+shared unequally between their two nodes); what is left:
 
 - :func:`correct_eccentricity`: the mean eccentricity vectors of the vehicle and the
   debris differ by ``dE`` (the debris' own eccentricities, about 0.004 for the SSO rocket
@@ -9,9 +11,10 @@ orbit's shape and plane, which the planner's circular model does not see:
   radius points along ``+-dE``, close it without changing the semi-major axis: a
   tangential impulse ``dv`` moves the eccentricity vector by ``2 dv / v`` along the
   radius (Vallado [1]_ §6.3, near-circular orbits), the cheapest way, ``v |dE| / 2``.
-- :func:`correct_plane`: a rotation onto the debris' plane where the vehicle crosses it.
+- :func:`correct_plane`: a rotation onto the debris' plane where the vehicle crosses it;
+- :func:`correct_phase`: the along-track gap, closed over a few orbits.
 
-The along-track miss is left to proximity operations (not modelled).  SI units.
+What is left (tens of metres) is the proximity operations' (not modelled).  SI units.
 
 References
 ----------
@@ -25,12 +28,16 @@ import numpy as np
 
 from ..physics.impulses import rotated_into, with_horizontal_speed
 from .propagation import ForceModel, propagate
-from .rates import SAMPLES
+from .rates import SAMPLES, mean_state, propagated_mean_state
 from .result import Maneuver
 from .track import Track
 
 SMALLEST_DE = 1e-5
 """Eccentricity differences below this are left alone (0.04 m/s at 800 km)."""
+SMALLEST_GAP_M = 10.0
+"""Along-track gaps below this [m] are left to the proximity operations."""
+PHASING_REVOLUTIONS = 5
+"""Orbits over which the along-track gap left at the arrival is closed (8 h at 800 km)."""
 
 
 def eccentricity_vector(r, v, *, mu: float) -> np.ndarray:
@@ -65,17 +72,32 @@ def _node(normal, pole) -> np.ndarray:
     return node / np.linalg.norm(node)
 
 
-def turned_eccentricity(wanted, wanted_normal, track: Track, pole, argp_turn: float):
-    """The eccentricity vector ``wanted`` of the plane ``wanted_normal``, its argument of
-    perigee turned back by ``argp_turn`` [rad] and laid in the vehicle's plane: what the
-    vehicle's must be now to become ``wanted`` once both planes meet and its apsides have
-    turned by ``argp_turn``."""
-    node_w = _node(wanted_normal, pole)
-    argp = np.arctan2(np.dot(wanted, np.cross(wanted_normal, node_w)), np.dot(wanted, node_w))
-    argp -= argp_turn
-    node = _node(track.normal, pole)
-    e = float(np.linalg.norm(wanted))
-    return e * (np.cos(argp) * node + np.sin(argp) * np.cross(track.normal, node))
+def in_node_frame(vector, normal, pole) -> np.ndarray:
+    """Components of an in-plane vector along the ascending node and 90 deg after it."""
+    node = _node(normal, pole)
+    return np.array([np.dot(vector, node), np.dot(vector, np.cross(normal, node))])
+
+
+def mean_eccentricity(track: Track, model: ForceModel, pole) -> np.ndarray:
+    """The vehicle's mean eccentricity vector over its next orbit (GCRF)."""
+    return _mean_eccentricity(track, model, pole)
+
+
+def node_split(da_over_a: float, along_node: float, at_node_sign: float) -> float:
+    """The tangential impulse at a node [in units of v] of a Hohmann transfer that also
+    moves the eccentricity vector by ``along_node`` along the node line.
+
+    Two tangential impulses ``dv1, dv2`` half an orbit apart at the nodes change
+    ``a`` by ``da / a = 2 (dv1 + dv2) / v`` and the eccentricity vector by
+    ``2 (dv1 - dv2) / v`` along the radius of the first (``at_node_sign``: +1 at the
+    ascending node, -1 at the descending one).  So ``dv1 = v (da/a + s de) / 4`` and the
+    transfer costs ``v max(|da/a|, |de|) / 2``: as much as the plain Hohmann transfer as
+    long as ``|de| <= |da/a|``, which is where ``along_node`` is clipped to (the rest is
+    left to the corrections).  Returns ``dv1 / v``.
+    """
+    room = abs(da_over_a)
+    de = float(np.clip(along_node, -room, room))
+    return 0.25 * (da_over_a + at_node_sign * de)
 
 
 def correct_eccentricity(track: Track, leg: int, wanted, model: ForceModel,
@@ -133,3 +155,37 @@ def correct_plane(track: Track, leg: int, ephemeris, target: int, model: ForceMo
     normal = np.cross(r_d[0], v_d[0])
     return track.impulse(leg, "correction",
                          rotated_into(track.r, track.v, normal / np.linalg.norm(normal)))
+
+
+def correct_phase(track: Track, leg: int, ephemeris, target: int, model: ForceModel, pole,
+                  revolutions: int = PHASING_REVOLUTIONS) -> list[Maneuver]:  # fmt: skip
+    """Close the along-track gap to the debris in ``revolutions`` orbits: a tangential
+    impulse that changes the mean motion by ``d(lambda) / T``, the coast, and the
+    impulse that gives the debris' semi-major axis back.
+
+    The cost is ``2/3 v |d(lambda)| / (2 pi N)`` [m/s] for ``N`` revolutions
+    (``da / a = -2/3 d(n) / n``; two tangential impulses of ``v |da| / (2 a)``): 0.3 m/s
+    for 15 km at 800 km over 5 orbits.
+    """
+    mine = propagated_mean_state(track.r, track.v, track.t, model, pole)
+    window = np.linspace(0.0, _period(track, model), SAMPLES, endpoint=False)
+    times = mine.t - window.mean() + window  # centred where the vehicle's mean state is
+    r_d, v_d = ephemeris.state(target, times)
+    theirs = mean_state(times, r_d, v_d, mu=model.mu, pole=pole)
+    gap = float(np.mod(theirs.arglat - mine.arglat + np.pi, 2.0 * np.pi) - np.pi)
+    if abs(gap) * mine.a < SMALLEST_GAP_M:
+        return []
+    rate = 2.0 * np.pi / _period(track, model)
+    coast = revolutions * 2.0 * np.pi / rate
+    da = -2.0 / 3.0 * mine.a * (gap / coast) / rate
+    done = []
+    for sign in (1.0, -1.0):
+        r_hat = track.r / np.linalg.norm(track.r)
+        horizontal = np.linalg.norm(track.v - np.dot(track.v, r_hat) * r_hat)
+        dv = sign * 0.5 * np.linalg.norm(track.v) * da / mine.a
+        done.append(track.impulse(leg, "correction",
+                                  with_horizontal_speed(track.r, track.v, track.normal,
+                                                        horizontal + dv)))  # fmt: skip
+        if sign > 0:
+            track.coast(track.t + coast, model, pole)
+    return done

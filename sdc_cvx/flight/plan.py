@@ -17,6 +17,7 @@ import pandas as pd
 
 from ..errors import InputError, SdcError
 from ..inputs.catalog import Catalog
+from .ephemeris import missing_phase
 
 
 class FlightError(InputError):
@@ -140,10 +141,10 @@ class FlightPlan:
                               "the plan (the catalog changed since the run?)")  # fmt: skip
         rows = [int(np.flatnonzero(ids.to_numpy() == name)[0]) for name in path]
         frame = catalog.frame.iloc[rows].reset_index(drop=True)
-        if catalog.start is None:
-            raise FlightError(f"{catalog.source}: no epochs and no start date, so no date to "
-                              "fly from (use a TLE/OMM/GTOC9 catalog, or a CSV with epochs)")
         subset = Catalog(frame=frame, start=catalog.start, source=catalog.source)
+        problem = missing_phase(subset)
+        if problem is not None:
+            raise FlightError(problem)
         return cls(tuple(legs), subset, float(tmax_days), (float(bounds[0]), float(bounds[1])),
                    float(sum(leg.dv_mps for leg in legs)), float(end_day))  # fmt: skip
 

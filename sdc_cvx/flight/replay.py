@@ -48,15 +48,18 @@ from ..physics.orbits import SECONDS_PER_DAY
 from ..physics.phasing import MeanOrbit, leg_at, phase_leg
 from .corrections import (
     correct_eccentricity,
+    correct_phase,
     correct_plane,
     debris_eccentricity,
-    turned_eccentricity,
+    in_node_frame,
+    mean_eccentricity,
+    node_split,
 )
 from .ephemeris import DebrisEphemeris
 from .frames import earth_pole_gcrf
 from .plan import FlightPlan
-from .propagation import ForceModel, averaged_orbit, orbit_average, propagate
-from .rates import RATE_MODES, SAMPLES, drift_factors, fitted_orbit, mean_state
+from .propagation import ForceModel, averaged_orbit, orbit_average
+from .rates import RATE_MODES, SAMPLES, drift_factors, fitted_orbit, propagated_mean_state
 from .result import Flight, Rendezvous
 from .track import Track
 
@@ -64,6 +67,11 @@ SHOTS = 3
 """One-orbit shots of a circularising impulse on the averaged orbit it aims at."""
 KINDS = ("depart", "drift", "trim", "leave_drift", "arrive", "correction")
 """The impulses of a leg, in time order (``trim`` and ``correction`` may be several)."""
+CORRECTION_DAYS = 0.6
+"""Time the corrections after an arrival take [days] (about 7 orbits): a leg followed by
+less stay at its debris aims to arrive that much earlier."""
+HOPELESS_DAYS = 30.0
+"""A leg that cannot arrive within this many days after T_max is not flown."""
 TRIMS = (0.5, 0.2, 0.05, 0.01)
 """When the drift's mean motion is trimmed: at these fractions of the drift left."""
 
@@ -111,11 +119,16 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
     track = Track(t0, r0[0], v0[0])
     maneuvers, meetings = [], []
     delay = 0.0  # how much later than the plan the vehicle is ready [s]
+    notes = []
     for k, leg in enumerate(plan.legs):
         t_ready = max(leg.departure_day * SECONDS_PER_DAY + delay, track.t)
         pole = _pole(plan, t_ready + 0.5 * leg.duration_days * SECONDS_PER_DAY)
         a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
-        latest = leg.arrival_day * SECONDS_PER_DAY + slack
+        # the arrival the mission can spare, less the corrections' time where the plan has
+        # no operations to hide them in
+        stay = (plan.legs[k + 1].departure_day if k + 1 < len(plan.legs)
+                else plan.plan_end_day) - leg.arrival_day  # fmt: skip
+        latest = (leg.arrival_day - max(CORRECTION_DAYS - stay, 0.0)) * SECONDS_PER_DAY + slack
         origin = _vehicle_orbit(track, orbits[k], model, pole)
         target, factors = orbits[k + 1], (1.0, 1.0)
         if rates == "fitted":
@@ -123,38 +136,44 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
                                   model, pole)  # fmt: skip
             factors = drift_factors(a_plan, i_plan, t_ready, model, pole)
         consts["drift_factors"] = factors
+        point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
         try:
             phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
                                         laps=leg.laps, a_bounds=bounds, latest_arrival=latest,
                                         **consts)  # fmt: skip
+            epochs, a_drift, model_dv = phased.epochs, phased.a_drift, phased.dv
         except ValueError:  # no phasing found: the plan's point, unphased, flown as it is
-            phased, in_time = None, False
-        point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
-        plan_model_dv = float(point["impulses"].sum())
-        epochs = point["epochs"] if phased is None else phased.epochs
-        a_drift = a_plan if phased is None else phased.a_drift
+            in_time = False
+            epochs, a_drift, model_dv = point["epochs"], a_plan, float(point["impulses"].sum())
+            notes.append(f"leg {k + 1}: no phasing found; flown unphased")
+        if epochs[3] > (plan.tmax_days + HOPELESS_DAYS) * SECONDS_PER_DAY:
+            notes.append(f"leg {k + 1} ({ids[k]} -> {ids[k + 1]}) cannot arrive before day "
+                         f"{epochs[3] / SECONDS_PER_DAY:.0f} (T_max {plan.tmax_days:g}): "
+                         "not flown, nor the legs after it")  # fmt: skip
+            break
         flown = _fly_leg(track, k, epochs, origin, a_drift, i_plan, factors, ephemeris, model,
                          pole)  # fmt: skip
         maneuvers += flown["maneuvers"]
         meeting = flown["meeting"]
-        leg_dv = sum(m.dv_mps for m in flown["maneuvers"])
-        phased_dv = plan_model_dv if phased is None else phased.dv
+        # phasing: the phased leg's model cost less the plan point's (same model, same
+        # orbits); correction: whatever else the flight took, so that plan + phasing +
+        # correction = flown, leg by leg
+        phasing = model_dv - float(point["impulses"].sum())
+        correction = sum(m.dv_mps for m in flown["maneuvers"]) - leg.dv_mps - phasing
         delay = epochs[3] - leg.arrival_day * SECONDS_PER_DAY
         meetings.append(Rendezvous(
-            target=ids[k + 1], **meeting,
-            correction_dv_mps=leg_dv - phased_dv,
-            phasing_shift_h=float(epochs[0] - t_ready) / 3600.0,
-            phasing_dv_mps=phased_dv - plan_model_dv,
+            target=ids[k + 1], **meeting, correction_dv_mps=correction,
+            phasing_shift_h=float(epochs[0] - t_ready) / 3600.0, phasing_dv_mps=phasing,
             delay_days=delay / SECONDS_PER_DAY, in_time=bool(in_time),
         ))  # fmt: skip
         if progress is not None:
             progress(f"leg {k + 1}/{len(plan.legs)} {ids[k]} -> {ids[k + 1]}: miss "
-                     f"{meeting['miss_km']:.2f} km, phasing {phased_dv - plan_model_dv:+.2f} "
-                     f"m/s, correction {leg_dv - phased_dv:+.2f} m/s")  # fmt: skip
+                     f"{meeting['miss_km']:.2f} km, phasing {phasing:+.2f} m/s, correction "
+                     f"{correction:+.2f} m/s, {delay / SECONDS_PER_DAY:+.2f} d")  # fmt: skip
     end = track.t + 2.0 * np.pi / orbits[-1].arglat_rate  # one more orbit with the last debris
     track.coast(end, model, _pole(plan, end))
     return Flight(plan=plan, maneuvers=tuple(maneuvers), rendezvous=tuple(meetings),
-                  segments=tuple(track.segments), force=model, rates=rates,
+                  segments=tuple(track.segments), force=model, rates=rates, notes=tuple(notes),
                   seconds=time.perf_counter() - started)  # fmt: skip
 
 
@@ -169,10 +188,7 @@ def _pole(plan: FlightPlan, t: float) -> np.ndarray:
 def _vehicle_orbit(track: Track, guess: MeanOrbit, model: ForceModel, pole) -> MeanOrbit:
     """Where the vehicle is: its mean orbit over the next revolution (first-order rates,
     which carry it only the few hours to its departure node)."""
-    period = 2.0 * np.pi / guess.arglat_rate
-    times = track.t + np.linspace(0.0, period, SAMPLES, endpoint=False)
-    arc = propagate(track.r, track.v, track.t, times[-1], model, pole=pole, t_eval=times)
-    now = mean_state(arc.t, arc.r, arc.v, mu=model.mu, pole=pole)
+    now = propagated_mean_state(track.r, track.v, track.t, model, pole)
     mine = MeanOrbit.from_elements(now.a, guess.e, now.inc, now.raan, now.arglat, j2=model.j2,
                                    mu=model.mu, r_eq=model.r_eq)  # fmt: skip
     return mine._replace(raan=now.raan - mine.raan_rate * now.t,
@@ -201,13 +217,18 @@ def _aim(track: Track, model, pole, a_goal, normal):
     return with_horizontal_speed(track.r, track.v, normal, speed)
 
 
-def _transfer(track: Track, normal, r_apse, model) -> np.ndarray:
-    """Onto a transfer orbit whose opposite apse is at ``r_apse`` [m] (Eq. 12; the radial
-    velocity kept): vis-viva with ``a = (r + r_apse) / 2``."""
-    r = np.linalg.norm(track.r)
-    radial = np.dot(track.v, track.r / r)
-    speed2 = model.mu * (2.0 / r - 2.0 / (r + r_apse)) - radial**2
-    return with_horizontal_speed(track.r, track.v, normal, np.sqrt(speed2))
+def _tangential(track: Track, normal, a_to, a_from, de_along_node, model, pole):
+    """The first impulse of a transfer from ``a_from`` to ``a_to`` [m] (mean), tangential,
+    that also moves the eccentricity vector by ``de_along_node`` along the node line
+    (:func:`~sdc_cvx.flight.corrections.node_split`); in the plane ``normal``."""
+    r_hat = track.r / np.linalg.norm(track.r)
+    radial = np.dot(track.v, r_hat)
+    horizontal = np.linalg.norm(track.v - radial * r_hat)
+    node = np.cross(pole, track.normal)
+    sign = 1.0 if np.dot(r_hat, node) >= 0.0 else -1.0  # at the ascending node or not
+    speed = np.linalg.norm(track.v)
+    dv = speed * node_split((a_to - a_from) / a_from, de_along_node, sign)
+    return with_horizontal_speed(track.r, track.v, normal, horizontal + dv)
 
 
 def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
@@ -228,11 +249,7 @@ def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
         if t_trim < start + 0.5 * SECONDS_PER_DAY or t_leave - t_trim < 0.25 * SECONDS_PER_DAY:
             continue
         track.coast(t_trim, model, pole)
-        guess = secular_rates(np.linalg.norm(track.r), 0.0, 0.0, j2=model.j2, mu=model.mu,
-                              r_eq=model.r_eq).arglat  # fmt: skip
-        times = track.t + np.linspace(0.0, 2.0 * np.pi / guess, SAMPLES, endpoint=False)
-        arc = propagate(track.r, track.v, track.t, times[-1], model, pole=pole, t_eval=times)
-        now = mean_state(arc.t, arc.r, arc.v, mu=model.mu, pole=pole)
+        now = propagated_mean_state(track.r, track.v, track.t, model, pole)
         rate = secular_rates(now.a, 0.0, now.inc, j2=model.j2, mu=model.mu,
                              r_eq=model.r_eq).arglat * factors[1]  # fmt: skip
         predicted = now.arglat + rate * (t_leave - now.t)
@@ -253,13 +270,26 @@ def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, facto
     """The four impulses of leg ``k`` at ``epochs``, the rendezvous and the correction."""
     leg, out = k + 1, []
     up_first = a_drift >= origin.a  # the plane change on the higher-radius impulse (Eq. 13)
+    # the target's orbit as SGP4 flies it, averaged over the orbit after the rendezvous
+    period = 2.0 * np.pi * np.sqrt(ephemeris.a_m[k + 1] ** 3 / model.mu)
+    goal_orbit = _debris_orbit(ephemeris, k + 1, epochs[3], period, model, pole)
+    goal_e = in_node_frame(debris_eccentricity(ephemeris, k + 1, epochs[3], model),
+                           goal_orbit.normal, pole)  # fmt: skip
     track.coast(epochs[0], model, pole)
-    plane = np.cross(track.r, track.v)
-    plane /= np.linalg.norm(plane)
+    # the eccentricity: along the node line now, and along it again after the drift has
+    # turned the apsides by `turn` (node_split: free within the transfers' room)
+    turn = secular_rates(a_drift, 0.0, i_drift, j2=model.j2, mu=model.mu,
+                         r_eq=model.r_eq).argp * (epochs[2] - epochs[1])  # fmt: skip
+    now_e = in_node_frame(mean_eccentricity(track, model, pole), track.normal, pole)
+    rotation = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+    wanted = goal_e - rotation @ now_e
+    first_de = wanted[1] / np.sin(turn) if abs(np.sin(turn)) > 0.05 else 0.0
+    plane = track.normal
     if not up_first:  # plane change now, to the drift inclination (its osculating offset kept)
         goal = inclination(track.r, track.v, pole) + (i_drift - origin.inc)
         plane = plane_with_inclination(track.r, track.v, pole, goal)
-    out.append(track.impulse(leg, "depart", _transfer(track, plane, a_drift, model)))
+    out.append(track.impulse(leg, "depart", _tangential(
+        track, plane, a_drift, origin.a, first_de, model, pole)))  # fmt: skip
     track.coast(epochs[1], model, pole)
     if up_first:
         goal = inclination(track.r, track.v, pole) + (i_drift - origin.inc)
@@ -267,24 +297,13 @@ def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, facto
     else:
         plane = plane_towards(track.r, track.v, plane)
     out.append(track.impulse(leg, "drift", _aim(track, model, pole, a_drift, plane)))
-    # the target's orbit as SGP4 flies it, averaged over the orbit after the rendezvous
-    period = 2.0 * np.pi * np.sqrt(ephemeris.a_m[k + 1] ** 3 / model.mu)
-    goal_orbit = _debris_orbit(ephemeris, k + 1, epochs[3], period, model, pole)
-    # the drift orbit takes the target's eccentricity now, so that the vehicle arrives on
-    # the orbit's shape too (its apsides turn at the drift's rate meanwhile)
-    turn = secular_rates(a_drift, 0.0, i_drift, j2=model.j2, mu=model.mu,
-                         r_eq=model.r_eq).argp * (epochs[2] - track.t)  # fmt: skip
-    wanted = turned_eccentricity(debris_eccentricity(ephemeris, k + 1, epochs[3], model),
-                                 goal_orbit.normal, track, pole, turn)  # fmt: skip
-    out += correct_eccentricity(track, leg, wanted, model, pole)
-    r_meet, _ = ephemeris.state(k + 1, np.array([epochs[3]]))
     out += _drift(track, leg, epochs[2], factors, model, pole)
-    plane = np.cross(track.r, track.v)
-    plane /= np.linalg.norm(plane)
+    plane = track.normal
     if goal_orbit.a < a_drift:  # going down: the plane change on this, higher, impulse
         plane = plane_towards(track.r, track.v, goal_orbit.normal)
-    out.append(track.impulse(leg, "leave_drift",
-                        _transfer(track, plane, np.linalg.norm(r_meet), model)))  # fmt: skip
+    drift_e = in_node_frame(mean_eccentricity(track, model, pole), track.normal, pole)
+    out.append(track.impulse(leg, "leave_drift", _tangential(
+        track, plane, goal_orbit.a, a_drift, (goal_e - drift_e)[0], model, pole)))  # fmt: skip
     track.coast(epochs[3], model, pole)
     if goal_orbit.a >= a_drift:  # going up: the plane change on this impulse
         plane = plane_towards(track.r, track.v, goal_orbit.normal)
@@ -295,6 +314,7 @@ def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, facto
     out += correct_eccentricity(track, leg, debris_eccentricity(ephemeris, k + 1, track.t, model),
                                 model, pole)  # fmt: skip
     out.append(correct_plane(track, leg, ephemeris, k + 1, model, pole))
+    out += correct_phase(track, leg, ephemeris, k + 1, model, pole)
     r_d, v_d = ephemeris.state(k + 1, np.array([track.t]))
     meeting = differences | {
         "epoch_s": track.t,  # the rendezvous: the vehicle on the debris' orbit

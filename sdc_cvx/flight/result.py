@@ -84,6 +84,7 @@ class Flight:
     force: ForceModel
     rates: str
     seconds: float
+    notes: tuple[str, ...] = ()
 
     # -- totals ---------------------------------------------------------------------
     @property
@@ -98,12 +99,22 @@ class Flight:
 
     @property
     def worst_miss_km(self) -> float:
-        return float(max(r.miss_km for r in self.rendezvous))
+        return float(max((r.miss_km for r in self.rendezvous), default=np.nan))
+
+    @property
+    def complete(self) -> bool:
+        """Every leg flown (a leg that cannot arrive near T_max is not, nor those after)."""
+        return len(self.rendezvous) == len(self.plan.legs)
 
     @property
     def end_day(self) -> float:
-        """Mission duration as flown [days]: the plan's, later by the last arrival's delay."""
-        return self.plan.plan_end_day + self.rendezvous[-1].delay_days
+        """Mission duration as flown [days]: the last rendezvous (its corrections done),
+        then the plan's operations at the last debris."""
+        last = self.plan.legs[-1]
+        if not self.rendezvous:
+            return np.nan
+        return self.rendezvous[-1].epoch_s / SECONDS_PER_DAY + (self.plan.plan_end_day
+                                                                - last.arrival_day)  # fmt: skip
 
     @property
     def within_tmax(self) -> bool:
@@ -111,13 +122,18 @@ class Flight:
 
     @property
     def status(self) -> str:
-        """``flown``; ``late`` when the phased plan ends after T_max."""
+        """``flown``; ``late`` when the flight ends after T_max; ``incomplete`` when a leg
+        could not be flown (``notes`` says which and why)."""
+        if not self.complete:
+            return "incomplete"
         return "flown" if self.within_tmax else "late"
 
     def summary(self) -> str:
         extra = 100.0 * (self.flown_dv_mps / self.plan_dv_mps - 1.0) if self.plan_dv_mps else 0.0
         limit = "within" if self.within_tmax else "LATE: beyond"
         limit += f" T_max {self.plan.tmax_days:g} d"
+        if not self.complete:
+            limit += f"; INCOMPLETE: {self.notes[-1]}"
         return (f"flight    plan {self.plan_dv_mps:.2f} m/s, flown {self.flown_dv_mps:.2f} m/s "
                 f"({extra:+.2f} %), worst miss {self.worst_miss_km:.2f} km; ends day "
                 f"{self.end_day:.2f}, {limit} ({self.force.describe()['name']}, "
@@ -146,7 +162,8 @@ class Flight:
         return frame
 
     def to_dict(self) -> dict:
-        return {
+        """``flight.json``: totals, status, force model and rates, notes (null: not known)."""
+        out = {
             "status": self.status,
             "plan_dv_mps": self.plan_dv_mps,
             "flown_dv_mps": self.flown_dv_mps,
@@ -159,7 +176,10 @@ class Flight:
             "force": self.force.describe(),
             "rates": self.rates,
             "seconds": self.seconds,
+            "notes": list(self.notes),
         }
+        return {k: (None if isinstance(v, float) and not np.isfinite(v) else v)
+                for k, v in out.items()}
 
     # -- files ------------------------------------------------------------------------
     def save(self, run_folder) -> list[str]:
@@ -186,7 +206,8 @@ class Flight:
                      self.maneuvers_frame().to_csv(index=False, float_format="%.10g"))  # fmt: skip
         write_atomic(folder / "rendezvous.csv",
                      self.rendezvous_frame().to_csv(index=False, float_format="%.10g"))  # fmt: skip
-        write_atomic(folder / "flight.json", json.dumps(self.to_dict(), indent=2) + "\n")
+        write_atomic(folder / "flight.json",
+                     json.dumps(self.to_dict(), indent=2, allow_nan=False) + "\n")  # fmt: skip
         segments = [(self.epochs(t), r, v) for t, r, v in self.segments]
         first = self.plan.catalog.frame["id"].iloc[0]
         write_oem(folder / "trajectory.oem", segments, object_name="SDC_CVX VEHICLE",

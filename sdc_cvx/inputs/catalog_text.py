@@ -35,7 +35,7 @@ DERIVED_COLUMNS = ("raan_rate_deg_per_day", "altitude_km", "raan_epoch_deg")
 KNOWN_COLUMNS = (
     "id", "a_km", "e", "inc_deg", "raan_deg", "name", "epoch", "raan_rate_deg_per_day",
     "altitude_km", "raan_epoch_deg", "argp_deg", "mean_anomaly_deg",
-    "mean_motion_rev_per_day", "intl_designator", "bstar",
+    "mean_motion_rev_per_day", "intl_designator", "arglat_deg", "bstar",
 )  # fmt: skip
 """Columns a catalog reads or its readers write; any other draws a :class:`CatalogWarning`."""
 EPOCH_EXPECTED = "expected an ISO-8601 UTC date such as 2020-05-24T12:00:00Z"

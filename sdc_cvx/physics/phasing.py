@@ -55,6 +55,10 @@ RADIUS_SPANS_M = (12e3, 50e3, 200e3)
 """Half-widths [m] of the brackets of drift radii searched around the plan's, the next
 only when the one before meets the target nowhere (a leg whose drift orbit is its
 departure orbit, the plan's zero-length legs, phases only by moving it far)."""
+LATE_COST_MPS_PER_DAY = 2.0
+"""What a day of lateness is worth [m/s] when no phasing arrives in time (a zero-length leg
+of the plan, flown after corrections): waiting a synodic period is then cheaper than a
+drift fast enough to keep the date, and the legs after it may make the days up."""
 RADIUS_POINTS = 12001
 """Points of each bracket before the zeros are refined by bisection (2 m apart in the
 first: the phase error turns up to about 8 rad per km on a half-year drift)."""
@@ -253,8 +257,8 @@ def _zeros(origin, target, t_ready, grid, inc_drift, k, consts):
 
 def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, *, laps=0,
               drift_factors=(1.0, 1.0), a_bounds=(0.0, np.inf), latest_arrival=np.inf,
-              nodes=NODES_PER_LEG, spans=RADIUS_SPANS_M, j2=J2, mu=MU_EARTH,
-              r_eq=R_EARTH) -> tuple[PhasedLeg, bool]:  # fmt: skip
+              late_cost=LATE_COST_MPS_PER_DAY, nodes=NODES_PER_LEG, spans=RADIUS_SPANS_M,
+              j2=J2, mu=MU_EARTH, r_eq=R_EARTH) -> tuple[PhasedLeg, bool]:  # fmt: skip
     """The cheapest phased leg near the plan's drift orbit (module docstring).
 
     Parameters
@@ -262,12 +266,15 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
     origin, target, t_ready, laps, drift_factors
         As :func:`leg_at`.
     a_drift, inc_drift : float
-        The plan's drift orbit [m, rad]: the radius is searched within ``span`` of it,
+        The plan's drift orbit [m, rad]: the radius is searched within ``spans`` of it,
         the inclination kept.
     a_bounds : (float, float)
         Drift radii allowed [m] (the mission's altitude bounds).
     latest_arrival : float
         Latest rendezvous epoch the mission can spare [s after t0].
+    late_cost : float
+        When no phased leg arrives by ``latest_arrival``: the ΔV [m/s] a day of lateness
+        is worth, to choose among the late ones (:data:`LATE_COST_MPS_PER_DAY`).
     nodes : int
         Departure nodes tried at once (up to :data:`NODE_BLOCKS` blocks of them).
     spans : sequence of float
@@ -276,17 +283,19 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
     Returns
     -------
     (PhasedLeg, bool)
-        The cheapest phased leg arriving by ``latest_arrival``, and True; or, when none
-        does, the phased leg arriving first, and False.
+        The cheapest phased leg arriving by ``latest_arrival`` (of the first brackets and
+        nodes that have one), and True; or, when none does, the one of least ΔV plus
+        ``late_cost`` per day late, of all those tried, and False.
 
     Raises
     ------
     ValueError
-        No drift radius in the bracket brings the vehicle to the target (no zero of the
-        phase error): the bracket or the nodes are too few for this leg.
+        No drift radius in the brackets and no departure node brings the vehicle to the
+        target (no zero of the phase error).
     """
     consts = dict(laps=laps, drift_factors=drift_factors, j2=j2, mu=mu, r_eq=r_eq)
-    found, in_time = None, False  # the first nodes that meet the target (in time if any do)
+    found = []  # (roots, nodes, legs) of every bracket and block of nodes tried
+    in_time = False
     for span in spans:
         low, high = max(a_drift - span, a_bounds[0]), min(a_drift + span, a_bounds[1])
         grid = np.linspace(low, high, RADIUS_POINTS)
@@ -297,24 +306,27 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
             good = np.abs(legs["phase_error"]) < PHASE_TOL_RAD  # not a jump of the node count
             if not good.any():
                 continue
-            found = found or (roots, rows, legs, good)
+            found.append((roots[good], rows[good], {name: value[..., good]
+                                                    for name, value in legs.items()}))
             if (legs["epochs"][3][good] <= latest_arrival).any():
-                found, in_time = (roots, rows, legs, good), True
+                found, in_time = found[-1:], True
                 break
         if in_time:
             break
-    if found is None:
+    if not found:
         raise ValueError(f"no drift radius within {spans[-1] / 1e3:g} km of the plan's and no "
                          f"departure within {NODE_BLOCKS * nodes} nodes meets the target")
-    roots, rows, legs, good = found
-    dv = np.where(good, legs["impulses"].sum(axis=0), np.inf)
-    arrival = np.where(good, legs["epochs"][3], np.inf)
-    in_time = arrival <= latest_arrival
-    pick = int(np.argmin(np.where(in_time, dv, np.inf)) if in_time.any() else np.argmin(arrival))
+    roots = np.concatenate([f[0] for f in found])
+    rows = np.concatenate([f[1] for f in found])
+    legs = {name: np.concatenate([f[2][name] for f in found], axis=-1) for name in found[0][2]}
+    dv = legs["impulses"].sum(axis=0)
+    late_days = np.maximum(legs["epochs"][3] - latest_arrival, 0.0) / 86400.0
+    pick = int(np.argmin(np.where(late_days > 0, np.inf, dv) if in_time
+                         else dv + late_cost * late_days))  # fmt: skip
     chosen = PhasedLeg(
         epochs=legs["epochs"][:, pick], a_drift=float(roots[pick]), inc_drift=float(inc_drift),
         impulses=legs["impulses"][:, pick], plane_changes=legs["plane_changes"][:, pick],
         raan_residual=float(legs["raan_residual"][pick]),
         phase_error=float(legs["phase_error"][pick]), node=int(rows[pick]),
     )  # fmt: skip
-    return chosen, bool(in_time.any())
+    return chosen, in_time

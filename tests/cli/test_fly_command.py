@@ -1,0 +1,233 @@
+"""``python -m sdc_cvx fly RUN_DIR`` and ``run ... --fly`` (issue 26), through real processes:
+what cannot be flown (exit 2, one line saying why, nothing written under ``flight/``),
+a plan that flies, ``--json`` kept pure, and a campaign folder flown mission by mission."""
+
+import json
+import shutil
+
+import pandas as pd
+import pytest
+
+from tests.conftest import EXAMPLES, PAPER_CSV, shared_file
+from tests.test_cli import cli_process
+
+TLE = "sso_rocket_bodies_2020/sso_rb.tle"
+FLIGHT_FILES = {"maneuvers.csv", "rendezvous.csv", "trajectory.oem", "flight.json", "flight.png"}
+# 3 rocket bodies within 40 days: solved in ~2 s, flown in ~5 s
+SSO_SCENARIO = """\
+[catalog]
+path = {path}
+
+[mission]
+n = 3
+tmax_days = {tmax}
+"""
+# a campaign of two such missions, 90 days apart: ~15 s to plan, ~15 s to fly
+SSO_CAMPAIGN = (
+    SSO_SCENARIO
+    + """
+[campaign]
+launch_days = [0.0, 90.0]
+"""
+)
+
+
+def sso_scenario(folder, text=SSO_SCENARIO, tmax=40):
+    path = folder / "scenario_sso.toml"
+    path.write_text(text.format(path=json.dumps(str(shared_file(TLE))), tmax=tmax),
+                    encoding="utf-8")  # fmt: skip
+    return path
+
+
+def assert_refused(result, *parts):
+    """Exit 2, one line on stderr naming ``parts``, nothing on stdout, no traceback."""
+    assert result.returncode == 2, (result.stdout, result.stderr)
+    assert "Traceback" not in result.stderr
+    errors = [line for line in result.stderr.splitlines() if line.startswith("error: ")]
+    assert len(errors) == 1, result.stderr
+    for part in parts:
+        assert part in errors[0], (part, errors[0])
+    assert not result.stdout.strip()
+
+
+def assert_no_flight(folder):
+    assert not (folder / "flight").exists()
+    assert not [p.name for p in folder.iterdir() if p.name.startswith(".flight")]
+
+
+@pytest.fixture(scope="module")
+def paper_run(tmp_path_factory):
+    """A run folder of the bundled paper case (Table 5: no epochs, no phases)."""
+    folder = tmp_path_factory.mktemp("paper") / "run"
+    result = cli_process("run", "--out", str(folder), "--quiet")
+    assert result.returncode == 0, result.stderr
+    return folder
+
+
+def copy_of(folder, tmp_path):
+    copy = tmp_path / "run"
+    shutil.copytree(folder, copy)
+    return copy
+
+
+# -- what cannot be flown --------------------------------------------------------------
+def test_a_folder_that_is_not_a_run_folder(tmp_path):
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    result = cli_process("fly", str(empty))
+    assert_refused(result, str(empty), "not a run folder")
+    assert list(empty.iterdir()) == []
+
+
+def test_a_folder_that_does_not_exist(tmp_path):
+    result = cli_process("fly", str(tmp_path / "nowhere"))
+    assert result.returncode == 2 and "does not exist" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+@pytest.mark.slow
+def test_the_paper_case_has_no_dates_to_fly_from(paper_run):
+    result = cli_process("fly", str(paper_run))
+    assert_refused(result, "paper Table 5", "no epochs", "start date")
+    assert_no_flight(paper_run)
+
+
+@pytest.mark.slow
+def test_a_catalog_without_phases_says_which_column_to_add(tmp_path):
+    """The paper's table as a CSV with a start date: dates, but no anomalies."""
+    folder = tmp_path / "run"
+    run = cli_process("run", "--catalog", str(PAPER_CSV), "--start", "2021-01-01", "--n", "3",
+                      "--tmax-days", "200", "--out", str(folder), "--quiet")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    result = cli_process("fly", str(folder))
+    assert_refused(result, str(PAPER_CSV.name), "no position on their orbit", "arglat_deg")
+    assert_no_flight(folder)
+
+
+@pytest.mark.slow
+def test_a_solution_json_without_legs_is_another_versions(paper_run, tmp_path):
+    folder = copy_of(paper_run, tmp_path)
+    data = json.loads((folder / "solution.json").read_text(encoding="utf-8"))
+    del data["legs"]
+    (folder / "solution.json").write_text(json.dumps(data), encoding="utf-8")
+    result = cli_process("fly", str(folder))
+    assert_refused(result, str(folder / "solution.json"), "legs")
+    assert_no_flight(folder)
+
+
+@pytest.mark.slow
+def test_a_run_folder_without_its_scenario(paper_run, tmp_path):
+    folder = copy_of(paper_run, tmp_path)
+    (folder / "scenario.toml").unlink()
+    assert_refused(cli_process("fly", str(folder)), str(folder), "scenario.toml")
+    assert_no_flight(folder)
+
+
+@pytest.mark.slow
+def test_a_low_thrust_plan_is_not_flown_yet(tmp_path):
+    folder = tmp_path / "run"
+    run = cli_process("run", str(EXAMPLES / "low_thrust.toml"), "--n", "3", "--out",
+                      str(folder), "--quiet")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert_refused(cli_process("fly", str(folder)), str(folder), "low-thrust")
+    assert_no_flight(folder)
+
+
+@pytest.mark.slow
+def test_run_fly_on_the_paper_case_says_why_it_cannot_fly(tmp_path):
+    folder = tmp_path / "run"
+    result = cli_process("run", "--n", "3", "--fly", "--out", str(folder), "--quiet")
+    assert result.returncode == 2, result.stderr
+    assert "no epochs" in result.stderr and "arglat_deg" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert not folder.exists()  # refused before the search: exit 2 writes nothing
+
+
+@pytest.mark.parametrize("command", [["fly", "{dir}"], ["run", "--fly", "--out", "{dir}/r"]])
+def test_an_unknown_force_model_is_a_usage_error(tmp_path, command):
+    args = [word.format(dir=tmp_path) for word in command] + ["--force-model", "bogus"]
+    result = cli_process(*args)
+    assert result.returncode == 2
+    assert "Invalid value for '--force-model'" in result.stderr and "'bogus'" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert not (tmp_path / "r").exists() and not (tmp_path / "flight").exists()
+
+
+# -- plans that fly ----------------------------------------------------------------------
+@pytest.mark.slow
+@pytest.mark.requires_shared_data(TLE)
+def test_run_fly_writes_the_flight_folder(tmp_path):
+    folder = tmp_path / "run"
+    result = cli_process("run", str(sso_scenario(tmp_path)), "--fly", "--out", str(folder))
+    assert result.returncode == 0, result.stderr
+    assert {p.name for p in (folder / "flight").iterdir()} == FLIGHT_FILES
+    assert not [p.name for p in folder.iterdir() if p.name.startswith(".")]
+    lines = result.stdout.splitlines()
+    summary = [line for line in lines if line.startswith("flight ")]
+    assert len(summary) == 1 and "plan" in summary[0] and "worst miss" in summary[0]
+    assert f"results   {folder / 'flight'}/" in lines
+    legs = json.loads((folder / "solution.json").read_text(encoding="utf-8"))["legs"]
+    assert sum(line.startswith("leg ") for line in result.stderr.splitlines()) == len(legs)
+    maneuvers = pd.read_csv(folder / "flight" / "maneuvers.csv")
+    assert sorted(set(maneuvers["leg"])) == list(range(1, len(legs) + 1))
+
+
+@pytest.mark.slow
+@pytest.mark.requires_shared_data(TLE)
+def test_run_fly_json_keeps_stdout_pure_json(tmp_path):
+    folder = tmp_path / "run"
+    result = cli_process("run", str(sso_scenario(tmp_path)), "--fly", "--json", "--out",
+                         str(folder))  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)  # nothing of the flight around it
+    assert data == json.loads((folder / "solution.json").read_text(encoding="utf-8"))
+    assert (folder / "flight" / "maneuvers.csv").is_file()
+    summary = [line for line in result.stderr.splitlines() if line.startswith("flight ")]
+    assert len(summary) == 1 and "flown" in summary[0]
+    assert f"results   {folder / 'flight'}/" in result.stderr
+
+
+# -- a campaign folder -------------------------------------------------------------------
+@pytest.mark.slow
+def test_the_small_campaign_of_the_paper_cannot_be_flown(tmp_path):
+    """examples/campaign_small.toml plans on the paper's Table 5: no dates to fly from."""
+    folder = tmp_path / "campaign"
+    made = cli_process("campaign", str(EXAMPLES / "campaign_small.toml"), "--out", str(folder),
+                       "--quiet")  # fmt: skip
+    assert made.returncode == 0, made.stderr
+    assert_refused(cli_process("fly", str(folder)), "paper Table 5", "no epochs")
+    for mission in sorted(folder.glob("mission_*")):
+        assert_no_flight(mission)
+
+
+@pytest.mark.slow
+@pytest.mark.requires_shared_data(TLE)
+def test_a_campaign_folder_is_flown_mission_by_mission(tmp_path):
+    folder = tmp_path / "campaign"
+    scenario = sso_scenario(tmp_path, SSO_CAMPAIGN, tmax=60)
+    made = cli_process("campaign", str(scenario), "--out", str(folder), "--quiet")
+    assert made.returncode == 0, made.stderr
+    missions = json.loads((folder / "campaign.json").read_text(encoding="utf-8"))["missions"]
+    assert len(missions) == 2
+    result = cli_process("fly", str(folder))
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert sum(line.startswith("flight ") for line in lines) == len(missions)
+    flying = [line for line in result.stderr.splitlines() if line.startswith("flying ")]
+    assert len(flying) == len(missions)
+    for entry in missions:
+        sub = folder / entry["folder"]
+        assert f"results   {sub / 'flight'}/" in lines
+        assert {p.name for p in (sub / "flight").iterdir()} == FLIGHT_FILES
+        solution = json.loads((sub / "solution.json").read_text(encoding="utf-8"))
+        flight = json.loads((sub / "flight" / "flight.json").read_text(encoding="utf-8"))
+        assert pd.Timestamp(flight["start"]) == pd.Timestamp(solution["start"])
+        rendezvous = pd.read_csv(sub / "flight" / "rendezvous.csv", dtype={"target": str})
+        assert list(rendezvous["target"]) == [str(x) for x in entry["path"][1:]]
+        first = pd.read_csv(sub / "flight" / "maneuvers.csv")["epoch_utc"].iloc[0]
+        assert pd.Timestamp(first) >= pd.Timestamp(solution["start"])
+    # the second mission flies from its own launch day, 90 days after the first's
+    starts = [pd.Timestamp(json.loads((folder / e["folder"] / "flight" / "flight.json")
+                                      .read_text(encoding="utf-8"))["start"])
+              for e in missions]  # fmt: skip
+    assert starts[1] - starts[0] == pd.Timedelta(days=90)
