@@ -26,15 +26,22 @@ from .exits import (
     fail,
     interrupted_exit,
 )
-from .options import out_option, parallel_options
+from .options import out_option, parallel_options, raan_rates_option
 from .progress import RunProgress, interruptible, open_progress_log
-from .reading import build_scenario, check_backend, read_catalog, select_candidates
+from .reading import (
+    build_scenario,
+    check_backend,
+    read_catalog,
+    select_candidates,
+    with_raan_rates,
+)
 
 
 @click.command("campaign")
 @click.argument("scenario_file", metavar="SCENARIO.toml", type=click.Path(dir_okay=False))
 @out_option("sdc_campaign_")
 @parallel_options
+@raan_rates_option
 @click.option(
     "--time-limit",
     "time_limit_s",
@@ -50,8 +57,8 @@ from .reading import build_scenario, check_backend, read_catalog, select_candida
               help="Write campaign.json to stdout (and nothing else there).")  # fmt: skip
 @click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
 @click.option("--progress/--no-progress", default=None, hidden=True)
-def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, scheduler, quiet,
-                     json_out, svg, progress):  # fmt: skip
+def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, scheduler, raan_rates,
+                     quiet, json_out, svg, progress):  # fmt: skip
     """Plan a removal campaign: K missions on given launch days, each debris removed once.
 
     SCENARIO.toml has a [campaign] table (launch_days, or missions with first_launch_day
@@ -79,7 +86,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         fail(f"--gap must be in [0, 1), got {gap:g}")
     if time_limit_s is not None and not time_limit_s > 0:
         fail(f"--time-limit must be > 0 seconds, got {time_limit_s:g}")
-    scenario = build_scenario(scenario_file)
+    scenario = build_scenario(scenario_file, catalog_raan_rates=raan_rates)
     if scenario.campaign is None:
         fail(
             f"{scenario_file} has no [campaign] table: add launch_days = [0.0, 365.25] (or "
@@ -102,6 +109,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
             click.echo(message, err=True)
 
     catalog, _ = select_candidates(catalog, scenario, info)
+    catalog = with_raan_rates(catalog, scenario, info)  # from day 0 to the last mission's end
     try:
         campaign.check_candidates(catalog)
     except MissionError as err:

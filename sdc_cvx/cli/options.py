@@ -19,6 +19,16 @@ def start_option(command):
                         "when naive) [scenario's, else the latest epoch].")(command)  # fmt: skip
 
 
+def raan_rates_option(command):
+    """``--raan-rates j2|sgp4``: the debris' RAAN rates the planner uses (``[catalog]
+    raan_rates``)."""
+    return click.option("--raan-rates", "raan_rates", default=None,
+                        type=click.Choice(["j2", "sgp4"], case_sensitive=False),
+                        help="The debris' RAAN rates: j2, the first-order J2 rates of the "
+                        "elements; sgp4, each debris' rate fitted to its SGP4 propagation over "
+                        "the mission window [scenario's, else j2].")(command)  # fmt: skip
+
+
 def catalog_options(command):
     command = start_option(command)
     command = click.option(

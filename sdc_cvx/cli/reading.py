@@ -4,6 +4,7 @@ and the candidates it selects; a bad input ends the command with exit 2 and its 
 
 from __future__ import annotations
 
+import time
 import warnings
 from typing import TYPE_CHECKING
 
@@ -109,3 +110,27 @@ def select_candidates(catalog: Catalog, scenario: Scenario, echo) -> tuple[Catal
     if len(report) or selection != Selection():
         echo(line)
     return kept, report
+
+
+def with_raan_rates(catalog: Catalog, scenario: Scenario, echo) -> Catalog:
+    """The candidates with the scenario's RAAN rates (``catalog.raan_rates``); exit 2 when
+    SGP4 cannot propagate one over the window.
+
+    ``echo`` gets a line with the window, the time the fit took and how far the fitted
+    rates are from the J2 ones.  Apply it after the selection: about 0.1 ms per debris.
+    """
+    if scenario.catalog_raan_rates == "j2":
+        return catalog
+    started = time.perf_counter()
+    try:
+        fitted = scenario.with_raan_rates(catalog)
+    except CatalogError as err:
+        fail(str(err))
+    except ValueError as err:
+        fail(f"catalog.raan_rates: {err}")
+    seconds = time.perf_counter() - started
+    shift = fitted.frame["raan_rate_deg_per_day"] - catalog.frame["raan_rate_deg_per_day"]
+    echo(f"RAAN rates fitted to SGP4 over {scenario.rate_window_days():g} days for "
+         f"{len(fitted)} debris in {seconds:.2f} s: {shift.min():+.4f} to {shift.max():+.4f} "
+         "deg/day from the J2 rates")  # fmt: skip
+    return fitted

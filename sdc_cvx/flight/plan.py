@@ -8,6 +8,7 @@ catalog its ``scenario.toml`` names (:meth:`FlightPlan.from_run_folder`), so tha
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,8 +16,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..errors import InputError, SdcError
+from ..errors import CatalogError, InputError, SdcError
 from ..inputs.catalog import Catalog
+from ..physics.orbits import SECONDS_PER_DAY
 from .ephemeris import missing_phase
 
 
@@ -84,11 +86,16 @@ class FlightPlan:
                           solution.total_duration_days)  # fmt: skip
 
     @classmethod
-    def from_run_folder(cls, folder, *, scenario_file=None) -> FlightPlan:
+    def from_run_folder(cls, folder, *, scenario_file=None, campaign_start=None) -> FlightPlan:
         """The plan of a run folder (``solution.json``, and the catalog of ``scenario.toml``).
 
         ``scenario_file``: the scenario naming the catalog, default the folder's own (a
-        campaign's mission folder has the campaign's, :func:`run_folder_plans`).
+        campaign's mission folder has the campaign's, :func:`run_folder_plans`, and
+        ``campaign_start``, the campaign's day 0, ISO-8601).  With ``[catalog] raan_rates
+        = "sgp4"`` the plan's debris get the rates the run fitted: from the run's day 0
+        (the campaign's) over the scenario's window
+        (:meth:`~sdc_cvx.study.scenario.Scenario.with_raan_rates`), then carried to the
+        plan's day 0.
 
         Raises
         ------
@@ -108,14 +115,24 @@ class FlightPlan:
         scenario_file = Path(scenario_file or folder / "scenario.toml")
         if not scenario_file.exists():
             raise FlightError(f"{folder}: no scenario.toml, so no catalog to fly against")
+        start = pd.Timestamp(data["start"]) if data.get("start") else None
         try:
             scenario = Scenario.load(scenario_file)
-            if data.get("start"):  # the RAANs at the run's day 0, whatever the catalog holds now
-                scenario = scenario.with_overrides(
-                    catalog_start=pd.Timestamp(data["start"]).to_pydatetime())
+            fitted = scenario.catalog_raan_rates != "j2"
+            day0 = pd.Timestamp(campaign_start) if fitted and campaign_start else start
+            if day0 is not None:  # the RAANs at the run's day 0, whatever the catalog holds now
+                scenario = scenario.with_overrides(catalog_start=day0.to_pydatetime())
             catalog = scenario.load_catalog(on_invalid="set aside")
         except SdcError as err:
             raise FlightError(f"{scenario_file}: {err}") from None
+
+        def rates(debris: Catalog) -> Catalog:  # as the run fitted them, at the plan's day 0
+            if not fitted:
+                return debris
+            debris = scenario.with_raan_rates(debris)
+            later = 0.0 if start is None or day0 is None else (start - day0).total_seconds()
+            return debris.advanced(later / SECONDS_PER_DAY)
+
         try:
             legs = tuple(PlannedLeg(leg["from"], leg["to"], leg["departure_day"],
                                     leg["duration_days"], leg["drift_a_km"], leg["drift_inc_deg"],
@@ -125,12 +142,18 @@ class FlightPlan:
             raise FlightError(f"{folder / 'solution.json'}: a leg lacks {err} (another "
                               "version's file?)") from None  # fmt: skip
         mission = data["mission"]
-        return cls._build(legs, catalog, float(mission["tmax_days"]),
-                          tuple(mission["drift_altitude_km"]),
-                          float(data["total_duration_days"]))  # fmt: skip
+        try:
+            return cls._build(legs, catalog, float(mission["tmax_days"]),
+                              tuple(mission["drift_altitude_km"]),
+                              float(data["total_duration_days"]), rates=rates)  # fmt: skip
+        except CatalogError as err:  # SGP4 cannot fly a debris over the window of its rate
+            raise FlightError(f"{scenario_file}: {err}") from None
 
     @classmethod
-    def _build(cls, legs, catalog: Catalog, tmax_days, bounds, end_day) -> FlightPlan:
+    def _build(cls, legs, catalog: Catalog, tmax_days, bounds, end_day, *,
+               rates=None) -> FlightPlan:  # fmt: skip
+        """The plan over the catalog rows of its path, in path order; ``rates`` (of those
+        rows' catalog): the RAAN rates of the run (:meth:`from_run_folder`)."""
         if not legs:
             raise FlightError("the plan has no leg to fly (a mission of one debris)")
         path = [legs[0].from_id] + [leg.to_id for leg in legs]
@@ -141,7 +164,9 @@ class FlightPlan:
                               "the plan (the catalog changed since the run?)")  # fmt: skip
         rows = [int(np.flatnonzero(ids.to_numpy() == name)[0]) for name in path]
         frame = catalog.frame.iloc[rows].reset_index(drop=True)
-        subset = Catalog(frame=frame, start=catalog.start, source=catalog.source)
+        subset = dataclasses.replace(catalog, frame=frame, invalid=None)
+        if rates is not None:
+            subset = rates(subset)
         problem = missing_phase(subset)
         if problem is not None:
             raise FlightError(problem)
@@ -160,11 +185,13 @@ def run_folder_plans(folder) -> list[tuple[Path, FlightPlan]]:
     campaign = folder / "campaign.json"
     if not campaign.exists():
         return [(folder, FlightPlan.from_run_folder(folder))]
-    missions = _read_json(campaign).get("missions")
+    data = _read_json(campaign)
+    missions = data.get("missions")
     if not isinstance(missions, list) or not missions:
         raise FlightError(f"{campaign}: no missions to fly")
     subs = [folder / str(entry.get("folder", "")) for entry in missions]
-    return [(sub, FlightPlan.from_run_folder(sub, scenario_file=folder / "scenario.toml"))
+    return [(sub, FlightPlan.from_run_folder(sub, scenario_file=folder / "scenario.toml",
+                                             campaign_start=data.get("start_utc")))
             for sub in subs]  # fmt: skip
 
 

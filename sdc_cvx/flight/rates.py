@@ -12,8 +12,9 @@ uses rates *measured*:
   rates over the leg; the drift orbit's rates are those of a one-day numerical
   propagation of it (as factors on the first-order rates, which carry the dependence on
   the radius the phasing searches).
-- ``rates="model"``: the first-order J2 rates of the catalog's mean elements, as the
-  planner has them: the replay then shows what the model alone misses.
+- ``rates="model"``: each target where SGP4 has it when the leg starts, then carried by
+  the first-order J2 rates of the catalog's mean elements, as the planner has them: the
+  replay then shows what the model's rates alone miss.
 
 A mean element here is the average over one orbit of the osculating one, sampled
 uniformly in time: short-period J2 terms (about 10 km in a, 0.05 deg in the argument of
@@ -125,6 +126,18 @@ def fitted_orbit(ephemeris, position: int, t_start: float, t_end: float, guess: 
         r, v = ephemeris.state(position, times)
         ends.append(mean_state(times, r, v, mu=model.mu, pole=pole))
     return _through(ends[0], ends[1], guess)
+
+
+def placed_orbit(ephemeris, position: int, t_start: float, guess: MeanOrbit, model: ForceModel,
+                 pole) -> MeanOrbit:  # fmt: skip
+    """Debris ``position`` where SGP4 has it at ``t_start`` [s] (mean state, one orbit), then
+    carried by ``guess``'s rates (``rates="model"``: where the model alone sends it)."""
+    period = 2.0 * np.pi / guess.arglat_rate
+    times = _one_orbit(t_start, period)
+    r, v = ephemeris.state(position, times)
+    now = mean_state(times, r, v, mu=model.mu, pole=pole)
+    return guess._replace(a=now.a, inc=now.inc, raan=now.raan - guess.raan_rate * now.t,
+                          arglat=now.arglat - guess.arglat_rate * now.t)
 
 
 def drift_factors(a: float, inc: float, t: float, model: ForceModel, pole) -> tuple[float, float]:

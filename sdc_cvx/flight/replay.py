@@ -59,7 +59,14 @@ from .ephemeris import DebrisEphemeris
 from .frames import earth_pole_gcrf
 from .plan import FlightPlan
 from .propagation import ForceModel, averaged_orbit, orbit_average
-from .rates import RATE_MODES, SAMPLES, drift_factors, fitted_orbit, propagated_mean_state
+from .rates import (
+    RATE_MODES,
+    SAMPLES,
+    drift_factors,
+    fitted_orbit,
+    placed_orbit,
+    propagated_mean_state,
+)
 from .result import Flight, Rendezvous
 from .track import Track
 
@@ -130,7 +137,8 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
                 else plan.plan_end_day) - leg.arrival_day  # fmt: skip
         latest = (leg.arrival_day - max(CORRECTION_DAYS - stay, 0.0)) * SECONDS_PER_DAY + slack
         origin = _vehicle_orbit(track, orbits[k], model, pole)
-        target, factors = orbits[k + 1], (1.0, 1.0)
+        target, factors = placed_orbit(ephemeris, k + 1, t_ready, orbits[k + 1], model,
+                                       pole), (1.0, 1.0)  # fmt: skip
         if rates == "fitted":
             target = fitted_orbit(ephemeris, k + 1, t_ready, latest + SECONDS_PER_DAY, target,
                                   model, pole)  # fmt: skip

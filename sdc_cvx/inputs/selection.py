@@ -32,6 +32,7 @@ Object types come from the names of a public catalogue (:func:`object_type`):
 
 from __future__ import annotations
 
+import dataclasses
 import fnmatch
 import math
 import re
@@ -246,7 +247,7 @@ def select(
             "leave out strict (--strict) to drop them with a warning"])  # fmt: skip
     dropped = np.array([bool(found) for found in reasons], dtype=bool)
     kept_frame = catalog.frame.loc[~dropped[:n_valid]].reset_index(drop=True)
-    kept = Catalog(frame=kept_frame, start=catalog.start, source=catalog.source)
+    kept = dataclasses.replace(catalog, frame=kept_frame, invalid=None)
     report = frame.loc[dropped, [c for c in ("id", "name") if c in frame.columns]].copy()
     report["altitude_km"] = altitude[dropped]
     report["inc_deg"] = inc[dropped]

@@ -35,10 +35,22 @@ PREOPT_CHUNK = 16384
 
 
 def node_orbits(catalog: Catalog, mission: Mission) -> NodeOrbits:
-    """The catalog's orbits at the mission start, with J2 rates for the mission's ``j2``."""
-    return NodeOrbits.from_elements(
+    """The catalog's orbits at the mission start, with their RAAN rates.
+
+    The J2 rates of the elements for the mission's ``j2`` (Eq. 7), or, for a catalog
+    whose rates are fitted to SGP4 (``catalog.raan_rates == "sgp4"``,
+    :meth:`~sdc_cvx.inputs.catalog.Catalog.with_sgp4_rates`), its
+    ``raan_rate_deg_per_day`` (an orbit added to it, the injection orbit, has the J2
+    rate at the package's ``J2`` there).  The drift orbits, the vehicle's, keep the J2
+    rates of the mission (:func:`sdc_cvx.physics.transfer.drift_rate`).
+    """
+    orbits = NodeOrbits.from_elements(
         catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad, j2=mission.j2
     )
+    if catalog.raan_rates == "sgp4":
+        rate = catalog.frame["raan_rate_deg_per_day"].to_numpy(dtype=float)
+        orbits = orbits._replace(rate=np.radians(rate) / SECONDS_PER_DAY)
+    return orbits
 
 
 def drift_radius_bounds(mission: Mission) -> tuple[float, float]:

@@ -16,7 +16,8 @@ import numpy as np
 from matplotlib import colormaps
 from matplotlib.figure import Figure
 
-from ..physics.orbits import SECONDS_PER_DAY, raan_rate
+from ..network.edges import node_orbits
+from ..physics.orbits import SECONDS_PER_DAY
 from .atomic import write_figure
 
 FIGURE_SIZE = (9.0, 4.8)
@@ -98,13 +99,12 @@ def _label_levels(row, span: float) -> list[float]:
 
 def plot_raan(solution) -> Figure:
     """The RAAN of every candidate against time, seen from a frame turning at their median
-    J2 rate (so that 123 debris are 123 slow lines, not a saw of wraps), each mission's
+    RAAN rate (so that 123 debris are 123 slow lines, not a saw of wraps), each mission's
     debris coloured while it flies and marked, with its id, where the vehicle meets them
-    (J2 rates from the catalog elements and the missions' J2)."""
+    (the rates the missions were planned with: :func:`sdc_cvx.network.edges.node_orbits`)."""
     fig, ax = _figure()
     catalog = solution.catalog
-    j2 = solution.missions[0].mission.j2
-    rate = np.degrees(raan_rate(catalog.a_m, catalog.e, catalog.inc_rad, j2=j2)) * SECONDS_PER_DAY
+    rate = np.degrees(node_orbits(catalog, solution.missions[0].mission).rate) * SECONDS_PER_DAY
     frame_rate = float(np.median(rate))
     raan0 = np.asarray(catalog.frame["raan_deg"], dtype=float)
     stops = rendezvous_days(solution)
@@ -142,7 +142,7 @@ def plot_raan(solution) -> Figure:
     ax.set_ylim(-180, 180)
     ax.set_yticks(range(-180, 181, 60))
     ax.set_title(f"RAANs of the {len(catalog)} candidates (grey) in a frame turning at their "
-                 f"median J2 rate, {frame_rate:.3f} deg/day", fontsize=10)  # fmt: skip
+                 f"median RAAN rate, {frame_rate:.3f} deg/day", fontsize=10)  # fmt: skip
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return fig
 

@@ -1,8 +1,8 @@
 """The vehicle's altitude (the paper's Fig. 17) and the RAAN gaps closing (Fig. 18).
 
-All RAAN rates are recomputed from the catalog elements with the mission's J2
-(``solution.mission.j2``), the same model the solver used, so the plotted RAAN gaps
-close exactly at each arrival.
+All RAAN rates are those the solver used (:func:`sdc_cvx.network.edges.node_orbits`: the
+J2 rates of the catalog elements with the mission's J2, ``solution.mission.j2``, or the
+catalog's rates fitted to SGP4), so the plotted RAAN gaps close exactly at each arrival.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..inputs.catalog import Catalog
+from ..network.edges import node_orbits
 from ..physics.low_thrust import plane_change_raan_change, spiral_raan_change
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
 from ..physics.transfer import NodeOrbits, drift_rate
@@ -139,9 +140,7 @@ def raan_gap_history(
     """
     index = _positions(solution, catalog)
     j2 = solution.mission.j2
-    orbits = NodeOrbits.from_elements(
-        catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad, j2=j2
-    )
+    orbits = node_orbits(catalog, solution.mission)
     raan0 = np.degrees(orbits.raan)
     rate = np.degrees(orbits.rate) * SECONDS_PER_DAY  # deg/day
     history = []

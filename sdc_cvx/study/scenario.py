@@ -9,6 +9,9 @@ A scenario file has four tables, each optional::
                                # naive; an ISO string is fine); default the latest epoch
     strict = false             # true: refuse the catalog when the selection keeps an
                                # element set that is not an orbit of this model
+    raan_rates = "j2"          # j2: the debris' first-order J2 RAAN rates; sgp4: each
+                               # one's rate fitted to its SGP4 propagation over the
+                               # mission window (Catalog.with_sgp4_rates)
     [mission]                  # exactly the fields of Mission
     n = 5
     tmax_days = 365.25
@@ -126,6 +129,11 @@ class Scenario:
     catalog_strict : bool
         True: refuse the catalog when the selection keeps an element set that is not an
         orbit of this model; False (default): drop it with a warning line.
+    catalog_raan_rates : {"j2", "sgp4"}
+        The debris' RAAN rates the planner uses: ``"j2"`` (default), the first-order J2
+        rates of the elements; ``"sgp4"``, each debris' rate fitted to its SGP4
+        propagation over :meth:`rate_window_days`, applied to the selected candidates
+        (:meth:`with_raan_rates`).
     source : Path or None
         The scenario file read, if any.  Not compared: two scenarios with the same
         content are equal wherever they were read from.
@@ -140,6 +148,7 @@ class Scenario:
     campaign: Campaign | None = None
     source: Path | None = field(default=None, compare=False)
     catalog_strict: bool = False
+    catalog_raan_rates: str = "j2"
 
     # ------------------------------------------------------------------ reading
     @classmethod
@@ -201,7 +210,8 @@ class Scenario:
         return reader(self.catalog_path, start=self.catalog_start, on_invalid=on_invalid)
 
     def select_candidates(self):
-        """``(kept, report)``: the catalog read, then the candidate filters, as ``run`` does.
+        """``(kept, report)``: the catalog read, then the candidate filters, then the RAAN
+        rates (:meth:`with_raan_rates`), as ``run`` does.
 
         The filters act first: element sets that are not orbits of this model are
         reported only when the filters keep them (check ``invalid`` in the report), or
@@ -211,12 +221,39 @@ class Scenario:
         ------
         CatalogError
             The file fails the catalog's validation (or, strict, the selection keeps an
-            element set that is not an orbit of this model).
+            element set that is not an orbit of this model; or SGP4 cannot propagate a
+            debris kept over the window of its fitted RAAN rate).
         ValueError
             A pattern matches no debris (see :meth:`Selection.apply`).
         """
         catalog = self.load_catalog(on_invalid="set aside")
-        return self.selection.apply(catalog, strict=self.catalog_strict)
+        kept, report = self.selection.apply(catalog, strict=self.catalog_strict)
+        return self.with_raan_rates(kept), report
+
+    def rate_window_days(self) -> float:
+        """The window the RAAN rates are fitted over [days from the catalog's start]: the
+        mission's ``tmax_days``, or a campaign's last launch day plus its ``tmax_days``."""
+        if self.campaign is None:
+            return float(self.mission.tmax_days)
+        return max(day + mission.tmax_days
+                   for day, mission in zip(self.campaign.launch_days, self.campaign.missions,
+                                           strict=True))  # fmt: skip
+
+    def with_raan_rates(self, catalog: Catalog) -> Catalog:
+        """``catalog`` with the RAAN rates the scenario asks for (``catalog_raan_rates``).
+
+        ``"sgp4"``: :meth:`Catalog.with_sgp4_rates` over :meth:`rate_window_days` (about
+        0.1 ms per debris: apply it to the candidates kept, not to a whole catalogue);
+        ``"j2"``: ``catalog`` itself.
+
+        Raises
+        ------
+        CatalogError
+            SGP4 cannot propagate a debris over the window (the debris named).
+        """
+        if self.catalog_raan_rates == "j2":
+            return catalog
+        return catalog.with_sgp4_rates(self.rate_window_days())
 
     # ------------------------------------------------------------------ writing
     def to_dict(self) -> dict:
@@ -238,6 +275,8 @@ class Scenario:
             data["catalog"]["start"] = self.catalog_start.isoformat()
         if self.catalog_strict:
             data["catalog"]["strict"] = True
+        if self.catalog_raan_rates != "j2":
+            data["catalog"]["raan_rates"] = self.catalog_raan_rates
         if self.selection.to_dict():
             data["selection"] = self.selection.to_dict()
         if self.campaign is not None:
@@ -260,6 +299,7 @@ class Scenario:
         """
         data = self.to_dict()
         data["catalog"]["start"] = self.catalog_start  # a TOML datetime, or not set
+        data["catalog"]["raan_rates"] = self.catalog_raan_rates
         data["selection"] = dict.fromkeys(TABLE_KEYS["selection"]) | self.selection.to_dict()
         lines = ["# sdc_cvx scenario, as used: every default filled in."]
         if self.source is not None:
@@ -268,6 +308,8 @@ class Scenario:
             lines += ["", f"[{table}]"]
             if table == "catalog" and self.catalog_path is None:
                 lines.append(f"# no path: {PAPER_CASE}")
+                if self.catalog_raan_rates != "j2":
+                    lines.append(f"raan_rates = {toml_value(self.catalog_raan_rates)}")
                 continue
             unset = [key for key, value in values.items() if value is None]
             lines += [f"{key} = {toml_value(value)}" for key, value in values.items()
@@ -322,7 +364,9 @@ def _dotted_name(name: str) -> str | None:
     aliases = {"catalog": "catalog.path", "catalog_path": "catalog.path",
                "format": "catalog.format", "catalog_format": "catalog.format",
                "start": "catalog.start", "catalog_start": "catalog.start",
-               "strict": "catalog.strict", "catalog_strict": "catalog.strict"}  # fmt: skip
+               "strict": "catalog.strict", "catalog_strict": "catalog.strict",
+               "raan_rates": "catalog.raan_rates",
+               "catalog_raan_rates": "catalog.raan_rates"}  # fmt: skip
     if name in aliases:
         return aliases[name]
     if "." in name:
@@ -336,6 +380,6 @@ def _dotted_name(name: str) -> str | None:
 
 def _allowed_overrides() -> str:
     return (
-        "allowed: catalog_path, catalog_format, catalog_start, a field of Mission, "
-        "SolverOptions, Selection or Vehicle, or a dotted key such as mission.n"
+        "allowed: catalog_path, catalog_format, catalog_start, catalog_raan_rates, a field "
+        "of Mission, SolverOptions, Selection or Vehicle, or a dotted key such as mission.n"
     )

@@ -25,7 +25,7 @@ from pathlib import Path
 
 from ..errors import ScenarioError
 from ..inputs.campaign import DEFAULT_PERIOD_DAYS, Campaign
-from ..inputs.catalog import Catalog
+from ..inputs.catalog import RAAN_RATES, Catalog
 from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
 from ..inputs.selection import OBJECT_TYPES, select
@@ -116,7 +116,7 @@ class _Limit(float):
 
 TABLES = ("catalog", "mission", "solver", "selection", "campaign", "vehicle")
 """The tables a scenario file may have."""
-_CATALOG_KEYS = ("path", "format", "start", "strict")
+_CATALOG_KEYS = ("path", "format", "start", "strict", "raan_rates")
 _MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission) if f.name != "vehicle")
 _VEHICLE_KEYS = tuple(f.name for f in dataclasses.fields(Vehicle))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
@@ -128,7 +128,8 @@ TABLE_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOL
               "vehicle": _VEHICLE_KEYS}  # fmt: skip
 """The keys each table may hold."""
 _TYPES = {
-    "catalog": {"path": str, "format": str, "start": object, "strict": bool},  # start: _start
+    "catalog": {"path": str, "format": str, "start": object, "strict": bool,
+                "raan_rates": str},  # start: _start
     "mission": typing.get_type_hints(Mission),
     "solver": typing.get_type_hints(SolverOptions),
     "selection": typing.get_type_hints(Selection) | {"max_eccentricity": _Limit | None},
@@ -193,6 +194,13 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
     strict = catalog.get("strict", False)
     if strict and catalog_path is None:
         problems.append(f"catalog.strict needs catalog.path ({PAPER_CASE} is all orbits)")
+    raan_rates = catalog.get("raan_rates", "j2").lower()
+    if raan_rates not in RAAN_RATES:
+        problems.append(
+            f"catalog.raan_rates must be one of {', '.join(RAAN_RATES)} (j2: the first-order "
+            "J2 rates of the elements; sgp4: each debris' rate fitted to its SGP4 "
+            f"propagation), got {_show(catalog['raan_rates'])}"
+        )
     campaign = None
     if "campaign" in tables and mission is not None:
         campaign = _campaign(tables["campaign"], mission, problems)
@@ -200,7 +208,8 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
         raise ScenarioError.collect(where, problems)
     return {"catalog_path": catalog_path, "catalog_format": catalog_format, "mission": mission,
             "solver": solver, "catalog_start": start, "selection": selection,
-            "campaign": campaign, "catalog_strict": strict}  # fmt: skip
+            "campaign": campaign, "catalog_strict": strict,
+            "catalog_raan_rates": raan_rates}  # fmt: skip
 
 
 def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign | None:

@@ -344,13 +344,15 @@ def _resolve_paths(flat: dict, base_dir: Path) -> dict:
 
 def _value(scenario: Scenario, dotted: str):
     """The value of a dotted key in a scenario, also when ``to_dict`` leaves it out (a
-    selection filter or ``catalog.strict`` at its default)."""
+    selection filter, ``catalog.strict`` or ``catalog.raan_rates`` at its default)."""
     table, _, key = dotted.partition(".")
     values = scenario.to_dict().get(table, {})
     if key in values:
         return values[key]
     if dotted == "catalog.strict":
         return scenario.catalog_strict
+    if dotted == "catalog.raan_rates":
+        return scenario.catalog_raan_rates
     if table == "selection":
         value = getattr(scenario.selection, key)
         return list(value) if isinstance(value, tuple) else value

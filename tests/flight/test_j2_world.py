@@ -5,7 +5,7 @@ model, from states chosen in the test; the catalog the planner sees holds their 
 elements, measured on their own propagation.  The model (mean elements, secular rates)
 and the replay then agree but for what the model leaves out (eccentricity, short-period
 terms): the vehicle meets each debris, within kilometres, for metres per second of
-correction.  With the first-order rates instead of the fitted ones, the misses grow:
+correction.  With the first-order rates instead of the fitted ones the corrections grow:
 the replay sees what the rates miss.
 """
 
@@ -104,9 +104,13 @@ def test_a_plan_flown_among_j2_debris_meets_each_one(world_and_plan):
     assert flight.within_tmax
 
 
-def test_first_order_rates_miss_what_the_fitted_ones_meet(world_and_plan):
+def test_first_order_rates_cost_corrections_the_fitted_ones_save(world_and_plan):
+    """With the phasing on first-order rates the vehicle reaches the node, and the target,
+    off the model's dates: the corrections after the arrival (the along-track gap above
+    all) cost several times those of the measured rates."""
     world, solution = world_and_plan
     plan = FlightPlan.from_solution(solution)
     fitted = fly(plan, ephemeris=world)
     model = fly(plan, ephemeris=world, rates="model")
-    assert model.worst_miss_km > 3 * fitted.worst_miss_km
+    corrections = [sum(m.correction_dv_mps for m in f.rendezvous) for f in (fitted, model)]
+    assert corrections[1] > 3 * corrections[0] > 0

@@ -31,9 +31,10 @@ from pathlib import Path
 
 from ...errors import CatalogError
 from ..catalog import Catalog, csv_delimiter
+from ..sgp4_sets import brouwer_a_km
 from . import csv as csv_format
 from . import gtoc9, omm, tle
-from ._common import _fail, _lines, brouwer_a_km
+from ._common import _fail, _lines
 from .tle import tle_checksum
 
 __all__ = [

@@ -9,7 +9,8 @@ package's gravity constant: ``a = (MU_EARTH / n_brouwer**2) ** (1/3)``, MU_EARTH
 3.986e14 m^3/s^2.  With this choice ``n = sqrt(mu / a^3)`` in the J2 rate (Eq. 7)
 is the SGP4 mean motion again.  ``n_brouwer`` is read from sgp4 as
 ``1 / (satrec.tumin * satrec.a ** 1.5)`` [rad/min], which is exactly sgp4's
-``no_unkozai`` (the compiled ``Satrec`` does not expose ``no_unkozai`` itself).
+``no_unkozai`` (the compiled ``Satrec`` does not expose ``no_unkozai`` itself):
+:func:`sdc_cvx.inputs.sgp4_sets.brouwer_a_km`.
 
 Measured on the 81 sun-synchronous rocket bodies of ``sso_rb.tle`` (600-900 km,
 i ~ 98-100 deg): the Brouwer ``a`` is 2.76-2.97 km (mean 2.88 km) *below* the
@@ -37,17 +38,6 @@ _MJD2000 = pd.Timestamp("2000-01-01T00:00:00Z")
 
 
 # ---------------------------------------------------------------------- shared
-def brouwer_a_km(satrec) -> float:
-    """Semi-major axis [km] of an initialised sgp4 ``Satrec`` (see the module docstring).
-
-    ``a = (MU_EARTH / n**2) ** (1/3)`` with ``n`` the Brouwer mean motion sgp4 derives
-    from the Kozai mean motion of the element set (``no_unkozai``).
-    """
-    n_rad_per_min = 1.0 / (satrec.tumin * satrec.a**1.5)
-    n = n_rad_per_min / 60.0
-    return (MU_EARTH / n**2) ** (1.0 / 3.0) / 1000.0
-
-
 def _lines(text: str) -> list[str]:
     """Lines of ``text`` without their ends; line k of the file is item k - 1."""
     return text.replace("\r\n", "\n").replace("\r", "\n").split("\n")

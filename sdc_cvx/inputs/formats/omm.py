@@ -19,6 +19,7 @@ from sgp4 import omm
 from sgp4.api import Satrec
 
 from ..catalog import Catalog, read_text
+from ..sgp4_sets import brouwer_a_km
 from ._common import (
     _a_problem,
     _blank,
@@ -29,7 +30,6 @@ from ._common import (
     _lines,
     _sgp4_problem,
     _short,
-    brouwer_a_km,
     kozai_a_km,
 )
 

@@ -13,6 +13,7 @@ import pandas as pd
 from sgp4.api import Satrec
 
 from ..catalog import Catalog, read_text
+from ..sgp4_sets import brouwer_a_km
 from ._common import (
     _a_problem,
     _catalog,
@@ -22,7 +23,6 @@ from ._common import (
     _lines,
     _sgp4_problem,
     _short,
-    brouwer_a_km,
     kozai_a_km,
 )
 
