@@ -7,21 +7,25 @@ For each leg (issue 26):
    arriving no later than the mission can spare.
 2. **Impulses as vectors** (:mod:`~sdc_cvx.physics.impulses`), each computed from the
    vehicle's propagated state at its epoch: ``depart`` (onto the transfer orbit),
-   ``drift`` (onto the drift orbit), ``leave_drift``, ``arrive`` (onto the target's orbit),
-   each Hohmann transfer's plane change on its higher-radius impulse (Eq. 13).  The two
-   circularising impulses aim at orbit-*averaged* semi-major axes (the drift's, then the
-   debris' own as SGP4 flies it), by a few one-orbit shots: a mean element taken as an
-   osculating one would miss by kilometres.
-3. **Rendezvous**: the vehicle against the debris (SGP4, in GCRF) after ``arrive``: the
-   position and velocity miss, the orbit-averaged differences of a, i and RAAN; then a
-   ``correction`` impulse at the vehicle's next crossing of the debris' plane closes the
-   plane (the semi-major axis was closed by ``arrive``).  The along-track miss is left to
-   the proximity operations, which this model does not fly.
-4. The next leg leaves from where the vehicle is (its phase measured against the debris).
+   ``drift`` (onto the drift orbit), ``trim`` (the drift's mean motion, so that the
+   vehicle is at the node the phasing has at ``leave_drift``), ``leave_drift``,
+   ``arrive`` (onto the target's orbit); each Hohmann transfer's plane change on its
+   higher-radius impulse (Eq. 13).  ``drift`` and ``arrive`` aim at orbit-*averaged*
+   semi-major axes (the drift's, then the debris' own as SGP4 flies it), by one-orbit
+   shots: a mean element taken as an osculating one would miss by kilometres.  The two
+   impulses of each transfer are unequal so that the eccentricity vector moves towards
+   the target's on the way, at no cost within the transfer's ``|da/a|``
+   (:func:`~sdc_cvx.flight.corrections.node_split`): the planner's circular model does
+   not see eccentricities, which differ by up to 0.01 between debris.
+3. **Rendezvous** (:mod:`~sdc_cvx.flight.corrections`): the ``correction`` impulses that
+   close what is left, the eccentricity, the plane, then the along-track gap over a few
+   orbits; the vehicle is then measured against the debris (SGP4, in GCRF): position and
+   velocity miss, and the orbit-averaged differences of a, i and RAAN at the arrival.
+4. The next leg leaves from where the vehicle is, when its corrections are done.
 
-The flown ΔV is the sum of the impulses as flown; per leg, ``phasing_dv`` is the phased
-leg's cost less the plan's (both in the mean-element model) and ``correction_dv`` the
-flown impulses less the phased model's: plan + phasing + corrections = flown.
+The flown ΔV is the sum of the impulses as flown.  Per leg, ``phasing_dv`` is the phased
+leg's cost less the plan point's, both in the mean-element model of the flight, and
+``correction_dv`` the rest: plan + phasing + correction = flown, leg by leg.
 
 References
 ----------
@@ -131,11 +135,13 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
         t_ready = max(leg.departure_day * SECONDS_PER_DAY + delay, track.t)
         pole = _pole(plan, t_ready + 0.5 * leg.duration_days * SECONDS_PER_DAY)
         a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
-        # the arrival the mission can spare, less the corrections' time where the plan has
-        # no operations to hide them in
+        # the plan's arrival, less the corrections' time where the plan has no operations to
+        # hide them in; the mission's slack is spent only when that date cannot be kept
+        # (spending it early, for a cheaper leg, leaves none to the legs after)
         stay = (plan.legs[k + 1].departure_day if k + 1 < len(plan.legs)
                 else plan.plan_end_day) - leg.arrival_day  # fmt: skip
-        latest = (leg.arrival_day - max(CORRECTION_DAYS - stay, 0.0)) * SECONDS_PER_DAY + slack
+        on_time = (leg.arrival_day - max(CORRECTION_DAYS - stay, 0.0)) * SECONDS_PER_DAY
+        latest = on_time + slack
         origin = _vehicle_orbit(track, orbits[k], model, pole)
         target, factors = placed_orbit(ephemeris, k + 1, t_ready, orbits[k + 1], model,
                                        pole), (1.0, 1.0)  # fmt: skip
@@ -145,10 +151,14 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
             factors = drift_factors(a_plan, i_plan, t_ready, model, pole)
         consts["drift_factors"] = factors
         point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
-        try:
+        try:  # on the plan's date if it can; else within the mission's slack; else late
             phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
-                                        laps=leg.laps, a_bounds=bounds, latest_arrival=latest,
-                                        **consts)  # fmt: skip
+                                        laps=leg.laps, a_bounds=bounds,
+                                        latest_arrival=on_time, **consts)  # fmt: skip
+            if not in_time and slack > 0.0:
+                phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
+                                            laps=leg.laps, a_bounds=bounds,
+                                            latest_arrival=latest, **consts)  # fmt: skip
             epochs, a_drift, model_dv = phased.epochs, phased.a_drift, phased.dv
         except ValueError:  # no phasing found: the plan's point, unphased, flown as it is
             in_time = False
