@@ -213,7 +213,9 @@ class Flight:
         write_oem(folder / "trajectory.oem", segments, object_name="SDC_CVX VEHICLE",
                   object_id=f"SDC_CVX-{first}",
                   comments=(f"sdc_cvx flown plan {' -> '.join(self.plan.catalog.frame['id'])}",
-                            f"force model {self.force.describe()}"))  # fmt: skip
+                            f"force model {self.force.describe()}",
+                            "zonal terms about the true pole of date (TEME z axis) at the "
+                            "middle of each leg; impulses in maneuvers.csv"))  # fmt: skip
         from .plot import flight_figure  # matplotlib only when the files are written
 
         flight_figure(self, folder / "flight.png")
