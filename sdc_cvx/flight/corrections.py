@@ -14,7 +14,8 @@ shared unequally between their two nodes); what is left:
 - :func:`correct_plane`: a rotation onto the debris' plane where the vehicle crosses it;
 - :func:`correct_phase`: the along-track gap, closed over a few orbits.
 
-What is left (tens of metres) is the proximity operations' (not modelled).  SI units.
+What is left (``miss_km``: hundreds of metres to kilometres) is the proximity
+operations' (not modelled).  SI units.
 
 References
 ----------
@@ -53,7 +54,8 @@ def _period(track: Track, model: ForceModel) -> float:
     return 2.0 * np.pi * np.sqrt(np.linalg.norm(track.r) ** 3 / model.mu)
 
 
-def _mean_eccentricity(track: Track, model, pole) -> np.ndarray:
+def mean_eccentricity(track: Track, model: ForceModel, pole) -> np.ndarray:
+    """The vehicle's mean eccentricity vector over its next orbit (GCRF)."""
     times = track.t + np.linspace(0.0, _period(track, model), SAMPLES, endpoint=False)
     arc = propagate(track.r, track.v, track.t, times[-1], model, pole=pole, t_eval=times)
     return np.mean(eccentricity_vector(arc.r, arc.v, mu=model.mu), axis=0)
@@ -78,11 +80,6 @@ def in_node_frame(vector, normal, pole) -> np.ndarray:
     return np.array([np.dot(vector, node), np.dot(vector, np.cross(normal, node))])
 
 
-def mean_eccentricity(track: Track, model: ForceModel, pole) -> np.ndarray:
-    """The vehicle's mean eccentricity vector over its next orbit (GCRF)."""
-    return _mean_eccentricity(track, model, pole)
-
-
 def node_split(da_over_a: float, along_node: float, at_node_sign: float) -> float:
     """The tangential impulse at a node [in units of v] of a Hohmann transfer that also
     moves the eccentricity vector by ``along_node`` along the node line.
@@ -104,7 +101,7 @@ def correct_eccentricity(track: Track, leg: int, wanted, model: ForceModel,
                          pole) -> list[Maneuver]:  # fmt: skip
     """The two tangential impulses that give the vehicle the mean eccentricity vector
     ``wanted`` (GCRF; its part in the vehicle's plane)."""
-    delta = wanted - _mean_eccentricity(track, model, pole)
+    delta = wanted - mean_eccentricity(track, model, pole)
     delta -= np.dot(delta, track.normal) * track.normal  # in the plane
     size = float(np.linalg.norm(delta))
     if size < SMALLEST_DE:
