@@ -174,9 +174,9 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
     catalog, _ = select_candidates(catalog, scenario, info)
     catalog = with_raan_rates(catalog, scenario, info)  # on the candidates: ~0.1 ms each
     if fly_plan:  # refused before the search: exit 2 means nothing written
-        from ..flight.ephemeris import missing_phase
+        from ..flight import unflyable
 
-        if (problem := missing_phase(catalog)) is not None:
+        if (problem := unflyable(catalog, mission)) is not None:
             fail(f"{problem} (asked by --fly)")
     try:
         mission.check_candidates(catalog)

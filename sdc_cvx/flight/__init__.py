@@ -10,8 +10,8 @@ numerical integration), :mod:`.replay` (the flight), :mod:`.result` (its tables 
 needs (secular rates, phasing, impulses as vectors) is in :mod:`sdc_cvx.physics`.
 """
 
-from .plan import FlightError, FlightPlan, run_folder_plans
+from .plan import FlightError, FlightPlan, run_folder_plans, unflyable
 from .replay import fly
 from .result import Flight
 
-__all__ = ["Flight", "FlightError", "FlightPlan", "fly", "run_folder_plans"]
+__all__ = ["Flight", "FlightError", "FlightPlan", "fly", "run_folder_plans", "unflyable"]

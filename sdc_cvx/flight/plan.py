@@ -75,6 +75,7 @@ class FlightPlan:
     def from_solution(cls, solution) -> FlightPlan:
         """The plan of a :class:`~sdc_cvx.solution.Solution` (impulsive transfers only)."""
         _check_transfer(solution.mission.transfer, "this solution")
+        _check_start(solution.mission.injection, "this solution")
         if solution.catalog is None:
             raise FlightError("this solution has no catalog: fly needs the debris' orbits")
         legs = tuple(PlannedLeg(leg.from_id, leg.to_id, leg.departure_day, leg.duration_days,
@@ -112,6 +113,7 @@ class FlightPlan:
                               "(no 'legs' or 'mission')")  # fmt: skip
         _check_transfer(data["mission"].get("transfer", data.get("transfer", {}).get(
             "transfer", "impulsive")), str(folder))  # fmt: skip
+        _check_start(data["mission"].get("injection"), str(folder))
         scenario_file = Path(scenario_file or folder / "scenario.toml")
         if not scenario_file.exists():
             raise FlightError(f"{folder}: no scenario.toml, so no catalog to fly against")
@@ -179,6 +181,15 @@ class FlightPlan:
         return self.catalog.start
 
 
+def unflyable(catalog: Catalog, mission) -> str | None:
+    """Why a plan of ``mission`` over ``catalog`` could not be flown, known before it is
+    planned (``run --fly`` refuses it then), or None."""
+    for problem in (_transfer_problem(mission.transfer), _start_problem(mission.injection)):
+        if problem:
+            return problem
+    return missing_phase(catalog)
+
+
 def run_folder_plans(folder) -> list[tuple[Path, FlightPlan]]:
     """``(folder, plan)`` of a run folder, or of each mission of a campaign folder."""
     folder = Path(folder)
@@ -195,10 +206,29 @@ def run_folder_plans(folder) -> list[tuple[Path, FlightPlan]]:
             for sub in subs]  # fmt: skip
 
 
+def _transfer_problem(transfer: str) -> str | None:
+    if transfer == "impulsive":
+        return None
+    return (f"a {transfer} plan; fly replays impulsive plans only so far (its spirals as "
+            "thrust arcs are not built yet)")
+
+
+def _start_problem(injection) -> str | None:
+    if injection is None:
+        return None
+    return ("a plan that starts from an injection orbit; fly starts from the first debris "
+            "only so far (where on the injection orbit the launcher leaves the vehicle is "
+            "not known)")
+
+
 def _check_transfer(transfer: str, what: str) -> None:
-    if transfer != "impulsive":
-        raise FlightError(f"{what}: a {transfer} plan; fly replays impulsive plans only so "
-                          "far (its spirals as thrust arcs are not built yet)")  # fmt: skip
+    if (problem := _transfer_problem(transfer)) is not None:
+        raise FlightError(f"{what}: {problem}")
+
+
+def _check_start(injection, what: str) -> None:
+    if (problem := _start_problem(injection)) is not None:
+        raise FlightError(f"{what}: {problem}")
 
 
 def _read_json(path: Path) -> dict:

@@ -133,6 +133,24 @@ def test_a_low_thrust_plan_is_not_flown_yet(tmp_path):
     assert_no_flight(folder)
 
 
+@pytest.mark.requires_shared_data(TLE)
+@pytest.mark.parametrize(("option", "named"), [
+    ("injection = [7100.0, 0.0, 98.5, 100.0]", "injection orbit"),
+    ('transfer = "low-thrust"\n[vehicle]\naccel_mps2 = 1e-4', "low-thrust"),
+])  # fmt: skip
+def test_run_fly_refuses_what_fly_cannot_fly_before_planning(tmp_path, option, named):
+    """A plan from an injection orbit, or a low-thrust plan: refused before the search,
+    so exit 2 writes nothing (as the command's help says)."""
+    text = SSO_SCENARIO.replace("[mission]\n", "[mission]\n" + option.split("\n[")[0] + "\n")
+    if "\n[" in option:
+        text += "[" + option.split("\n[", 1)[1] + "\n"
+    folder = tmp_path / "run"
+    result = cli_process("run", str(sso_scenario(tmp_path, text)), "--fly", "--out",
+                         str(folder))  # fmt: skip
+    assert_refused(result, named, "--fly")
+    assert not folder.exists()
+
+
 @pytest.mark.slow
 def test_run_fly_on_the_paper_case_says_why_it_cannot_fly(tmp_path):
     folder = tmp_path / "run"
