@@ -55,6 +55,9 @@ RADIUS_SPANS_M = (12e3, 50e3, 200e3)
 """Half-widths [m] of the brackets of drift radii searched around the plan's, the next
 only when the one before meets the target nowhere (a leg whose drift orbit is its
 departure orbit, the plan's zero-length legs, phases only by moving it far)."""
+BISECTIONS = 30
+"""Halvings of a bracket of radii (2 m to 33 m wide): 2e-9 to 3e-8 m, a phase error far
+below :data:`PHASE_TOL_RAD` at the steepest 8 rad per km."""
 LATE_COST_MPS_PER_DAY = 2.0
 """What a day of lateness is worth [m/s] when no phasing arrives in time (a zero-length leg
 of the plan, flown after corrections): waiting a synodic period is then cheaper than a
@@ -163,8 +166,8 @@ def _half_transfer(r_from, r_to, inc, *, j2, mu, r_eq):
 
 
 def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, node, *,
-           laps=0, drift_factors=(1.0, 1.0), j2=J2, mu=MU_EARTH,
-           r_eq=R_EARTH) -> dict:  # fmt: skip
+           laps=0, drift_factors=(1.0, 1.0), j2=J2, mu=MU_EARTH, r_eq=R_EARTH,
+           costs=True) -> dict:  # fmt: skip
     """The leg leaving at departure node ``node`` on drift radius ``a_drift`` (broadcast).
 
     Parameters
@@ -183,6 +186,9 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
         The drift orbit's RAAN and argument-of-latitude rates as flown, over the
         first-order rates (1, 1: the first-order model; :mod:`sdc_cvx.flight.rates`
         measures them by propagation).
+    costs : bool
+        False: the epochs and errors only, no ``impulses`` nor ``plane_changes`` (the
+        search for the phase error's zeros needs no more).
 
     Returns
     -------
@@ -225,30 +231,35 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     arglat_b1 = origin.arglat_at(t_b1)
     arrival_arglat = arglat_b1 + np.pi + m * np.pi + np.pi
     phase_error = _wrap_pi(target.arglat_at(t_b4) - arrival_arglat)
-    i1, i2, p1, p2 = _hohmann_impulses(origin.a, a_d, np.abs(i_d - origin.inc), mu)
-    i3, i4, p3, p4 = _hohmann_impulses(a_d, target.a, plane_3, mu)
-    return {
+    leg = {
         "epochs": np.stack(np.broadcast_arrays(t_b1, t_b2, t_b3, t_b4)),
-        "impulses": np.stack(np.broadcast_arrays(i1, i2, i3, i4)),
-        "plane_changes": np.stack(np.broadcast_arrays(p1, p2, p3, p4)),
         "raan_residual": raan_residual,
         "phase_error": phase_error,
+    }
+    if not costs:
+        return leg
+    i1, i2, p1, p2 = _hohmann_impulses(origin.a, a_d, np.abs(i_d - origin.inc), mu)
+    i3, i4, p3, p4 = _hohmann_impulses(a_d, target.a, plane_3, mu)
+    return leg | {
+        "impulses": np.stack(np.broadcast_arrays(i1, i2, i3, i4)),
+        "plane_changes": np.stack(np.broadcast_arrays(p1, p2, p3, p4)),
     }
 
 
 def _zeros(origin, target, t_ready, grid, inc_drift, k, consts):
     """Drift radii where the phase error vanishes, for departure nodes ``k``: every sign
     change on ``grid`` (not the jump at +/- pi) refined by bisection; and their nodes."""
-    error = leg_at(origin, target, t_ready, grid[None, :], inc_drift, k[:, None],
+    error = leg_at(origin, target, t_ready, grid[None, :], inc_drift, k[:, None], costs=False,
                    **consts)["phase_error"]  # fmt: skip
     cross = (np.sign(error[:, :-1]) != np.sign(error[:, 1:])) & (
         np.abs(error[:, :-1] - error[:, 1:]) < np.pi)  # fmt: skip
     rows, cols = np.nonzero(cross)
     rows = k[rows]
     lo, hi, e_lo = grid[cols], grid[cols + 1], error[np.nonzero(cross)]
-    for _ in range(40):  # bisection on every bracket at once
+    for _ in range(BISECTIONS):  # on every bracket at once
         mid = 0.5 * (lo + hi)
-        e_mid = leg_at(origin, target, t_ready, mid, inc_drift, rows, **consts)["phase_error"]
+        e_mid = leg_at(origin, target, t_ready, mid, inc_drift, rows, costs=False,
+                       **consts)["phase_error"]  # fmt: skip
         same = np.sign(e_mid) == np.sign(e_lo)
         lo, e_lo = np.where(same, mid, lo), np.where(same, e_mid, e_lo)
         hi = np.where(same, hi, mid)
