@@ -61,11 +61,17 @@ def mean_eccentricity(track: Track, model: ForceModel, pole) -> np.ndarray:
     return np.mean(eccentricity_vector(arc.r, arc.v, mu=model.mu), axis=0)
 
 
+def debris_orbit(ephemeris, target: int, t: float,
+                 model: ForceModel) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """Debris ``target``'s states [m, m/s] over one orbit from ``t`` [s] (GCRF), sampled
+    uniformly for an orbit average."""
+    period = 2.0 * np.pi / np.sqrt(model.mu / ephemeris.a_m[target] ** 3)
+    return ephemeris.state(target, t + np.linspace(0.0, period, SAMPLES, endpoint=False))
+
+
 def debris_eccentricity(ephemeris, target: int, t: float, model: ForceModel) -> np.ndarray:
     """Debris ``target``'s mean eccentricity vector over the orbit from ``t`` [s] (GCRF)."""
-    period = 2.0 * np.pi / np.sqrt(model.mu / ephemeris.a_m[target] ** 3)
-    times = t + np.linspace(0.0, period, SAMPLES, endpoint=False)
-    r_d, v_d = ephemeris.state(target, times)
+    r_d, v_d = debris_orbit(ephemeris, target, t, model)
     return np.mean(eccentricity_vector(r_d, v_d, mu=model.mu), axis=0)
 
 

@@ -68,6 +68,7 @@ from scipy.integrate import ode
 from scipy.optimize import brentq
 
 from ..physics.elements import secular_rates
+from .frames import equatorial_basis
 
 RTOL = 1e-12
 """Relative tolerance of DOP853 (module docstring: 0.3 m after 50 days at 800 km)."""
@@ -455,9 +456,7 @@ def orbit_average(r, v, *, mu: float, pole) -> AveragedOrbit:
     e_vec = np.mean(
         (v2 - mu / rn)[:, None] * r - np.sum(r * v, axis=-1)[:, None] * v, axis=0
     ) / mu  # fmt: skip
-    x_hat = np.array([1.0, 0.0, 0.0]) - p[0] * p
-    x_hat /= np.linalg.norm(x_hat)
-    y_hat = np.cross(p, x_hat)
+    x_hat, y_hat, _ = equatorial_basis(p)
     node = np.cross(p, normal)
     node_norm = np.linalg.norm(node)
     raan = float(np.mod(np.arctan2(node @ y_hat, node @ x_hat), 2 * np.pi)) if node_norm else 0.0

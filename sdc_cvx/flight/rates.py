@@ -35,7 +35,7 @@ import numpy as np
 from ..physics.elements import secular_rates, state_to_elements
 from ..physics.phasing import MeanOrbit
 from .frames import equatorial_basis
-from .propagation import ForceModel, propagate
+from .propagation import ForceModel, orbit_average, propagate
 
 RATE_MODES = ("fitted", "model")
 SAMPLES = 64
@@ -58,23 +58,16 @@ def mean_state(times, r, v, *, mu: float, pole) -> MeanState:
     """Orbit-averaged a, i, RAAN and argument of latitude of states sampled uniformly
     over one period (``times`` [s], ``r`` [m], ``v`` [m/s] arrays (m, 3)).
 
-    The angles are in the equator of ``pole``; the argument of latitude is the mean of
+    a, i and RAAN are :func:`~sdc_cvx.flight.propagation.orbit_average`'s (the RAAN in
+    [0, 2 pi)); the angles are in the equator of ``pole``; the argument of latitude is the mean of
     the unwrapped samples, which is the mean one at the middle of the samples (a line fit
     through them passes there; its periodic terms average out over the period).
     """
+    averaged = orbit_average(r, v, mu=mu, pole=pole)  # a, i and RAAN
     basis = equatorial_basis(pole)
     elements = state_to_elements(np.asarray(r) @ basis.T, np.asarray(v) @ basis.T, mu=mu)
-    normal = np.cross(r, v)
-    normal = np.mean(normal / np.linalg.norm(normal, axis=1, keepdims=True), axis=0) @ basis.T
-    normal /= np.linalg.norm(normal)
-    raan = float(np.arctan2(normal[0], -normal[1]))
-    return MeanState(
-        t=float(np.mean(times)),
-        a=float(np.mean(elements.a)),
-        inc=float(np.arccos(np.clip(normal[2], -1.0, 1.0))),
-        raan=raan,
-        arglat=float(np.mean(np.unwrap(elements.arglat))),
-    )
+    return MeanState(t=float(np.mean(times)), a=averaged.a, inc=averaged.inc,
+                     raan=averaged.raan, arglat=float(np.mean(np.unwrap(elements.arglat))))
 
 
 def propagated_mean_state(r, v, t: float, model: ForceModel, pole) -> MeanState:

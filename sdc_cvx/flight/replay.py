@@ -40,6 +40,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
+import pandas as pd
 
 from ..physics.elements import secular_rates
 from ..physics.impulses import (
@@ -55,6 +56,8 @@ from .corrections import (
     correct_phase,
     correct_plane,
     debris_eccentricity,
+    debris_orbit,
+    eccentricity_vector,
     in_node_frame,
     mean_eccentricity,
     node_split,
@@ -76,8 +79,6 @@ from .track import Track
 
 SHOTS = 3
 """One-orbit shots of a circularising impulse on the averaged orbit it aims at."""
-KINDS = ("depart", "drift", "trim", "leave_drift", "arrive", "correction")
-"""The impulses of a leg, in time order (``trim`` and ``correction`` may be several)."""
 CORRECTION_DAYS = 0.6
 """Time the corrections after an arrival take [days] (about 7 orbits): a leg followed by
 less stay at its debris aims to arrive that much earlier."""
@@ -198,8 +199,6 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
 def _pole(plan: FlightPlan, t: float) -> np.ndarray:
     """Earth's rotation axis in GCRF at ``t`` [s after day 0] (constant over a leg: it
     moves about 1e-4 rad a year)."""
-    import pandas as pd
-
     return earth_pole_gcrf(plan.start + pd.to_timedelta([t], unit="s"))[0]
 
 
@@ -211,13 +210,6 @@ def _vehicle_orbit(track: Track, guess: MeanOrbit, model: ForceModel, pole) -> M
                                    mu=model.mu, r_eq=model.r_eq)  # fmt: skip
     return mine._replace(raan=now.raan - mine.raan_rate * now.t,
                          arglat=now.arglat - mine.arglat_rate * now.t)
-
-
-def _debris_orbit(ephemeris, k, t, period, model, pole):
-    """Debris ``k``'s orbit averaged over one period from ``t`` (SGP4 states)."""
-    times = t + np.linspace(0.0, period, SAMPLES, endpoint=False)
-    r, v = ephemeris.state(k, times)
-    return orbit_average(r, v, mu=model.mu, pole=pole)
 
 
 def _aim(track: Track, model, pole, a_goal, normal):
@@ -289,9 +281,9 @@ def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, facto
     leg, out = k + 1, []
     up_first = a_drift >= origin.a  # the plane change on the higher-radius impulse (Eq. 13)
     # the target's orbit as SGP4 flies it, averaged over the orbit after the rendezvous
-    period = 2.0 * np.pi * np.sqrt(ephemeris.a_m[k + 1] ** 3 / model.mu)
-    goal_orbit = _debris_orbit(ephemeris, k + 1, epochs[3], period, model, pole)
-    goal_e = in_node_frame(debris_eccentricity(ephemeris, k + 1, epochs[3], model),
+    r_goal, v_goal = debris_orbit(ephemeris, k + 1, epochs[3], model)
+    goal_orbit = orbit_average(r_goal, v_goal, mu=model.mu, pole=pole)
+    goal_e = in_node_frame(np.mean(eccentricity_vector(r_goal, v_goal, mu=model.mu), axis=0),
                            goal_orbit.normal, pole)  # fmt: skip
     track.coast(epochs[0], model, pole)
     # the eccentricity: along the node line now, and along it again after the drift has

@@ -23,6 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .elements import rtn_basis
+
 
 def _unit(vector) -> np.ndarray:
     vector = np.asarray(vector, dtype=float)
@@ -114,6 +116,4 @@ def rotated_into(r, v, normal) -> np.ndarray:
 
 def rtn(r, v, vector) -> np.ndarray:
     """``vector`` in the local radial, transverse, normal frame of the state (r, v)."""
-    r_hat, h, _ = _planes_through(r, v)
-    transverse = np.cross(h, r_hat)
-    return np.array([np.dot(vector, r_hat), np.dot(vector, transverse), np.dot(vector, h)])
+    return rtn_basis(np.asarray(r, dtype=float), np.asarray(v, dtype=float)) @ vector
