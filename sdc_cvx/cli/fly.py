@@ -34,6 +34,7 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
     summary on stdout, or on stderr (``stdout=False``: ``run --json`` keeps stdout JSON)."""
     from ..errors import SdcError
     from ..flight import fly, run_folder_plans
+    from ..flight.result import flight_folder_problem
 
     def progress(line: str) -> None:
         if not quiet:
@@ -41,6 +42,9 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
 
     try:
         plans = run_folder_plans(folder)
+        for sub, _ in plans:  # before any flight: a folder of the user's is never replaced
+            if (problem := flight_folder_problem(sub)) is not None:
+                fail(problem)
         for sub, plan in plans:
             progress(f"flying {sub}: {' -> '.join(plan.catalog.frame['id'])}")
             flight = fly(plan, force=force_model, progress=progress)

@@ -28,16 +28,26 @@ import pandas as pd
 
 from ..physics.orbits import SECONDS_PER_DAY
 from ..report.atomic import write_atomic
+from ..report.out_folder import FLIGHT_FILES, FLIGHT_FOLDER, is_ours
 from .oem import write_oem
-from .plan import FlightPlan
+from .plan import FlightError, FlightPlan
 from .propagation import ForceModel
 
-FLIGHT_FOLDER = "flight"
 MANEUVER_COLUMNS = ("epoch_utc", "leg", "kind", "dv_mps", "dv_r_mps", "dv_t_mps", "dv_n_mps",
                     "dv_x_mps", "dv_y_mps", "dv_z_mps")  # fmt: skip
 RENDEZVOUS_COLUMNS = ("epoch_utc", "target", "miss_km", "miss_mps", "da_km", "di_deg",
                       "draan_deg", "correction_dv_mps", "phasing_shift_h", "phasing_dv_mps",
                       "delay_days", "in_time")  # fmt: skip
+
+
+def flight_folder_problem(run_folder) -> str | None:
+    """Why ``run_folder/flight/`` may not be (re)written, or None: it holds a file a flight
+    does not write (the user's: never replaced)."""
+    target = Path(run_folder) / FLIGHT_FOLDER
+    if target.exists() and not is_ours(target, ()):
+        return (f"{target} holds files sdc_cvx did not write: move them, or the flight is "
+                "not written there")
+    return None
 
 
 @dataclass(frozen=True)
@@ -183,9 +193,15 @@ class Flight:
 
     # -- files ------------------------------------------------------------------------
     def save(self, run_folder) -> list[str]:
-        """Write ``run_folder/flight/`` at once (aside, then swapped in); the paths written."""
+        """Write ``run_folder/flight/`` at once (aside, then swapped in); the paths written.
+
+        An earlier ``flight/`` is replaced only when it holds nothing but the files a
+        flight writes: a folder of the user's there is refused (:class:`FlightError`).
+        """
         run_folder = Path(run_folder)
         target = run_folder / FLIGHT_FOLDER
+        if (problem := flight_folder_problem(run_folder)) is not None:
+            raise FlightError(problem)
         stage = run_folder / f".{FLIGHT_FOLDER}.{os.getpid()}.partial"
         shutil.rmtree(stage, ignore_errors=True)
         stage.mkdir()
@@ -219,7 +235,7 @@ class Flight:
         from .plot import flight_figure  # matplotlib only when the files are written
 
         flight_figure(self, folder / "flight.png")
-        return ["maneuvers.csv", "rendezvous.csv", "flight.json", "trajectory.oem", "flight.png"]
+        return sorted(FLIGHT_FILES)
 
     def altitude_profile(self) -> tuple[np.ndarray, np.ndarray]:
         """Propagated altitude [km] against days after day 0 (every OEM sample)."""

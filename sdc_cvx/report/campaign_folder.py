@@ -29,7 +29,7 @@ import re
 from pathlib import Path
 
 from .atomic import write_atomic
-from .out_folder import RUN_FOLDER_FILES
+from .out_folder import RUN_FOLDER_FILES, is_ours
 from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_staged
 
 CAMPAIGN_FOLDER_MARKERS = ("campaign.json", "campaign.log", "missions.csv")
@@ -63,7 +63,7 @@ class _CampaignFiles:
                 out.append(path.name)
                 continue
             out += [f"{path.name}/{inner.name}" for inner in sorted(path.iterdir())
-                    if inner.name not in RUN_FOLDER_FILES or not inner.is_file()]  # fmt: skip
+                    if not is_ours(inner, RUN_FOLDER_FILES)]  # fmt: skip
         return out
 
 

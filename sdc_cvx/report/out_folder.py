@@ -3,11 +3,11 @@ any solve (:mod:`sdc_cvx.report.run_folder` writes the folders).
 
 A new or empty folder is used; an earlier folder of sdc_cvx (a run folder: one holding
 ``solution.json``, ``run.log`` or ``legs.csv``; a campaign folder: its own markers) is
-replaced whole, unless it also holds something sdc_cvx did not write (a file of the
-user's, which replacing the folder would delete); any other non-empty folder is refused,
-so a mistyped ``--out ~`` cannot replace a home folder.  The folder one is in or one of
-its parents is refused too (swapping it would leave the shell in a deleted folder), and
-so is a name longer than a file system takes.
+replaced whole (the ``flight/`` a flight of it wrote too), unless it also holds something
+sdc_cvx did not write (a file of the user's, which replacing the folder would delete); any
+other non-empty folder is refused, so a mistyped ``--out ~`` cannot replace a home
+folder.  The folder one is in or one of its parents is refused too (swapping it would
+leave the shell in a deleted folder), and so is a name longer than a file system takes.
 """
 
 from __future__ import annotations
@@ -24,6 +24,12 @@ RUN_FOLDER_FILES = frozenset(
 )
 """Every file a run folder may hold: an earlier run folder with any other file in it (a
 file of the user's) is refused, not replaced with it."""
+FLIGHT_FOLDER = "flight"
+FLIGHT_FILES = frozenset(
+    {"maneuvers.csv", "rendezvous.csv", "flight.json", "trajectory.oem", "flight.png"}
+)
+"""What a run folder's ``flight/`` holds (``fly RUN_DIR``, :mod:`sdc_cvx.flight.result`):
+such a folder is sdc_cvx's, replaced with the run folder or by the next flight."""
 NAME_MAX_BYTES = 255
 """The longest file or folder name [bytes] of the usual file systems (ext4, xfs, btrfs)."""
 
@@ -63,7 +69,17 @@ def foreign_names(folder: Path, files) -> list[str]:
     """
     if hasattr(files, "foreign"):
         return files.foreign(folder)
-    return sorted(p.name for p in folder.iterdir() if p.name not in files or not p.is_file())
+    return sorted(p.name for p in folder.iterdir() if not is_ours(p, files))
+
+
+def is_ours(path: Path, files) -> bool:
+    """Whether ``path`` is sdc_cvx's: a file named in ``files``, or a ``flight/`` folder
+    holding a flight's files and nothing else."""
+    if path.is_file():
+        return path.name in files
+    return (path.name == FLIGHT_FOLDER and path.is_dir() and not path.is_symlink()
+            and all(inner.is_file() and inner.name in FLIGHT_FILES
+                    for inner in path.iterdir()))  # fmt: skip
 
 
 def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,

@@ -188,6 +188,17 @@ def test_run_fly_writes_the_flight_folder(tmp_path):
     assert sum(line.startswith("leg ") for line in result.stderr.splitlines()) == len(legs)
     maneuvers = pd.read_csv(folder / "flight" / "maneuvers.csv")
     assert sorted(set(maneuvers["leg"])) == list(range(1, len(legs) + 1))
+    # flown again: an earlier flight/ of ours is replaced, one with a file of the user's
+    # is refused and kept whole
+    mine = folder / "flight" / "notes.txt"
+    mine.write_text("the user's", encoding="utf-8")
+    before = {p.name: p.read_bytes() for p in (folder / "flight").iterdir()}
+    assert_refused(cli_process("fly", str(folder)), "did not write")
+    assert {p.name: p.read_bytes() for p in (folder / "flight").iterdir()} == before
+    assert not [p.name for p in folder.iterdir() if p.name.startswith(".")]
+    mine.unlink()
+    assert cli_process("fly", str(folder), "--quiet").returncode == 0
+    assert {p.name for p in (folder / "flight").iterdir()} == FLIGHT_FILES
 
 
 @pytest.mark.slow

@@ -61,6 +61,26 @@ def test_an_earlier_run_folder_is_replaced_whole_and_no_stale_svg_stays(solution
     assert not list(tmp_path.glob(".*partial"))  # nothing aside left
 
 
+def test_a_flown_run_folder_is_replaced_but_not_a_file_of_the_users_in_its_flight(solution,
+                                                                                   tmp_path):
+    """``fly`` writes ``flight/`` in the run folder: a run again into it replaces it (the
+    flight was the old plan's), unless ``flight/`` holds a file sdc_cvx does not write."""
+    folder = tmp_path / "run"
+    solution.save(folder, formats=())
+    flight = folder / "flight"
+    flight.mkdir()
+    for name in ("maneuvers.csv", "rendezvous.csv", "flight.json", "trajectory.oem"):
+        (flight / name).write_text("")
+    assert out_folder_problem(folder) is None
+    (flight / "mine.txt").write_text("the user's")
+    with pytest.raises(FileExistsError, match="flight"):
+        solution.save(folder, formats=())
+    assert (flight / "mine.txt").read_text() == "the user's"
+    (flight / "mine.txt").unlink()
+    solution.save(folder, formats=())
+    assert not flight.exists()
+
+
 def test_a_folder_that_is_not_a_run_folder_is_refused(solution, tmp_path):
     (tmp_path / "notes.txt").write_text("mine")
     assert "not empty and is not an earlier run folder" in out_folder_problem(tmp_path)
