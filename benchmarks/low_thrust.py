@@ -9,6 +9,7 @@ times is printed.
     python benchmarks/low_thrust.py
     python benchmarks/low_thrust.py --accel 3e-5 1e-4 3e-4 --only paper
     python benchmarks/low_thrust.py --repeat 3       # the median of 3 runs per row
+    python benchmarks/low_thrust.py --paper          # the paper's method too (its plan)
 
 The machine it ran on is printed first: compare times within one run.
 """
@@ -46,7 +47,7 @@ def load(case: str):
     return catalog
 
 
-def run_case(case, accel, time_limit, queue):
+def run_case(case, accel, time_limit, queue, method="certified"):
     from sdc_cvx import Mission, MissionInfeasible, SolverOptions, solve
 
     catalog = load(case)
@@ -55,23 +56,25 @@ def run_case(case, accel, time_limit, queue):
     start = time.perf_counter()
     try:
         solution = solve(catalog, Mission(n=5, tmax_days=365.25, **transfer),
-                         solver=SolverOptions(time_limit_s=time_limit))  # fmt: skip
+                         solver=SolverOptions(time_limit_s=time_limit, method=method))  # fmt: skip
     except MissionInfeasible:  # proven: no plan (the spirals alone outlast T_max)
         queue.put(dict(N=len(catalog), seconds=time.perf_counter() - start, peak_mb=peak_mb(),
                        status="infeasible"))  # fmt: skip
         return
     queue.put(dict(N=len(catalog), seconds=time.perf_counter() - start, peak_mb=peak_mb(),
                    answer=solution.total_dv_mps, lower=solution.lower_bound_mps,
-                   gap_pct=100 * solution.gap_rel, status=str(solution.status),
+                   gap_pct=None if solution.gap_rel is None else 100 * solution.gap_rel,
+                   status=str(solution.status),
                    path="-".join(solution.path)))  # fmt: skip
 
 
-def measure(case, accel, time_limit, repeat):
+def measure(case, accel, time_limit, repeat, method="certified"):
     runs = []
     for _ in range(repeat):
         queue = mp.get_context("spawn").Queue()
         proc = mp.get_context("spawn").Process(target=run_case,
-                                               args=(case, accel, time_limit, queue))  # fmt: skip
+                                               args=(case, accel, time_limit, queue,
+                                                     method))  # fmt: skip
         proc.start()
         proc.join(time_limit * 2 + 60)
         if proc.is_alive():
@@ -92,35 +95,42 @@ def main(argv=None):
     parser.add_argument("--only", nargs="*", help="cases: paper, sso-rb")
     parser.add_argument("--time-limit", type=float, default=600.0, help="per run [s]")
     parser.add_argument("--repeat", type=int, default=1, help="runs per row (median time)")
+    parser.add_argument("--paper", action="store_true",
+                        help="also the paper's method (method = \"paper\", its default T0)")
     args = parser.parse_args(argv)
     load_avg = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
           f"load {load_avg:.1f}, Python {platform.python_version()}")  # fmt: skip
-    print(f"{'case':<8} {'N':>3} {'model':<18} {'answer':>8} {'bound':>8} {'gap %':>6} "
+    print(f"{'case':<8} {'N':>3} {'model':<24} {'answer':>8} {'bound':>8} {'gap %':>6} "
           f"{'s':>6} {'x imp.':>6} {'MB':>5} {'status':<8} path")  # fmt: skip
     cases = [c for c in ("paper", "sso-rb") if not args.only or c in args.only]
     if not RB.is_file():
         cases = [c for c in cases if c != "sso-rb"]
     for case in cases:
         base = None
-        for accel in [None, *args.accel]:
-            row = measure(case, accel, args.time_limit, args.repeat)
+        runs = [(accel, "certified") for accel in [None, *args.accel]]
+        if args.paper:
+            runs += [(accel, "paper") for accel in [None, *args.accel]]
+        for accel, method in runs:
+            row = measure(case, accel, args.time_limit, args.repeat, method)
             model = "impulsive" if accel is None else f"low-thrust {accel:g}"
+            model += " paper" if method == "paper" else ""
             if "seconds" not in row:
-                print(f"{case:<8} {'-':>3} {model:<18} {row['status']}")
+                print(f"{case:<8} {'-':>3} {model:<24} {row['status']}")
                 continue
             base = row["seconds"] if accel is None else base
             ratio = row["seconds"] / base if base else float("nan")
             if "answer" not in row:  # proven infeasible
-                print(f"{case:<8} {row['N']:>3} {model:<18} {'-':>8} {'-':>8} {'-':>6} "
+                print(f"{case:<8} {row['N']:>3} {model:<24} {'-':>8} {'-':>8} {'-':>6} "
                       f"{row['seconds']:>6.1f} {ratio:>6.2f} {row['peak_mb']:>5.0f} "
                       f"{row['status']:<8}", flush=True)  # fmt: skip
                 continue
-            print(f"{case:<8} {row['N']:>3} {model:<18} {row['answer']:>8.2f} "
-                  f"{row['lower']:>8.2f} {row['gap_pct']:>6.3f} {row['seconds']:>6.1f} "
+            lower = "-" if row["lower"] is None else f"{row['lower']:.2f}"
+            gap = "-" if row["gap_pct"] is None else f"{row['gap_pct']:.3f}"
+            print(f"{case:<8} {row['N']:>3} {model:<24} {row['answer']:>8.2f} "
+                  f"{lower:>8} {gap:>6} {row['seconds']:>6.1f} "
                   f"{ratio:>6.2f} {row['peak_mb']:>5.0f} {row['status']:<8} {row['path']}",
                   flush=True)  # fmt: skip
-
 
 if __name__ == "__main__":
     main()

@@ -58,7 +58,9 @@ class Mission:
         Lower and upper altitude bounds of the drift orbits above R_T [km] (paper: 400-1200),
         within :data:`DRIFT_ALTITUDE_RANGE_KM` (150-2000 km).
     preopt_days : float
-        Transfer duration bound T0 of the pre-optimisation [days] (paper: 2 months).
+        Bound T0 of the pre-optimisation on each leg's drift [days] (paper: 2 months): the
+        whole leg for the impulsive model, the coast for low thrust (its spirals and plane
+        change come on top).
     dv_max_mps : float
         Edges whose pre-optimised cost exceeds this are dropped [m/s] (paper's ΔVmax).
     drift_inclination : {"table3", "free"}

@@ -96,6 +96,7 @@ class EdgeTable:
         total = len(self.frame)
         return (
             f"{c[KEPT]} of {total} edges kept ({c[TOO_SLOW]} cannot close the RAAN gap within "
+            f"{'a coast of ' if self.mission.transfer == 'low-thrust' else ''}"
             f"T0 = {self.mission.preopt_days:g} days, {c[TOO_COSTLY]} cost more than "
             f"{self.mission.dv_max_mps:g} m/s)"
         )

@@ -283,12 +283,16 @@ def allowed_inclination(inc_drift, origin_inc, target_inc, rate_drift, rate_targ
 def cheapest_transfer(origin: NodeOrbits, target: NodeOrbits, t_depart, max_duration, a_low,
                       a_high, accel, *, inclination="table3", sides=(1.0, -1.0), j2=J2,
                       mu=MU_EARTH) -> TransferChoice:  # fmt: skip
-    """Pre-optimised low-thrust leg of each edge: the cheapest lasting at most ``max_duration``.
+    """Pre-optimised low-thrust leg of each edge: the cheapest whose coast lasts at most
+    ``max_duration``.
 
     The low-thrust counterpart of :func:`~sdc_cvx.physics.transfer.cheapest_transfer`
     (Part IV-B's heuristic, for the edge table and the paper's method): drift radii on a
     grid of :data:`PREOPT_GRID` points plus the two debris radii, zoomed once around the
-    best; both drift inclinations where the rule allows them; the smallest coast.
+    best; both drift inclinations where the rule allows them; the smallest coast.  T0
+    bounds the drift, as the paper's two months do (its impulsive leg is all drift): the
+    spirals and the plane change come on top, so one T0 suits both models and every
+    acceleration.
 
     Parameters
     ----------
@@ -297,7 +301,7 @@ def cheapest_transfer(origin: NodeOrbits, target: NodeOrbits, t_depart, max_dura
     t_depart : float or array_like
         Departure date [s].
     max_duration : float or array_like
-        Duration bound T0 [s] (one, or one per edge).
+        Bound T0 of the coast [s] (one, or one per edge).
     a_low, a_high : float
         Drift radius bounds [m].
     accel : float
@@ -328,7 +332,7 @@ def cheapest_transfer(origin: NodeOrbits, target: NodeOrbits, t_depart, max_dura
 
 
 def _best_on(origin, target, a, t_depart, max_duration, accel, rule, sides, j2, mu):
-    """The cheapest of the drift radii ``a`` (M, K) within the duration, per edge."""
+    """The cheapest of the drift radii ``a`` (M, K) whose coast fits the bound, per edge."""
     o = NodeOrbits(*(np.asarray(v)[:, None] for v in origin))
     t = NodeOrbits(*(np.asarray(v)[:, None] for v in target))
     dv = leg_dv(o.a, o.inc, t.a, t.inc, a, mu=mu)
@@ -341,7 +345,7 @@ def _best_on(origin, target, a, t_depart, max_duration, accel, rule, sides, j2, 
         side = np.where(rate >= t.rate, 1.0, -1.0)
         seconds = leg_seconds(o, t, a, inc, t_depart, accel, j2=j2, mu=mu)
         ok = (allowed_inclination(inc, o.inc, t.inc, rate, t.rate, rule)
-              & np.isin(side, sides) & (seconds <= max_duration))  # fmt: skip
+              & np.isin(side, sides) & (seconds - dv / accel <= max_duration))  # fmt: skip
         cost = np.where(ok, dv, np.inf)
         k = np.argmin(cost, axis=1)
         better = cost[rows, k] < out[4]

@@ -295,3 +295,26 @@ def test_the_linear_part_range_is_the_exact_range_over_the_dates():
         scale = (abs(r_lo) + abs(r_hi) + abs(g)) * 25 / 200
         assert lo <= values.min() + 1e-15 and hi >= values.max() - 1e-15
         assert values.min() - lo <= scale and hi - values.max() <= scale
+
+
+def test_the_pre_optimisation_bound_t0_bounds_the_coast_and_thrust_comes_on_top(table):
+    """Part IV-B's pre-optimised leg with low thrust: the cheapest whose *coast* lasts at
+    most T0 (the paper's two months of drift), against the dense scan of this file."""
+    orbits, i, j, _ = table
+    t0_days, f = 30.0, 1e-4
+    choice = LowThrustModel(f).cheapest_transfer(orbits.take(i), orbits.take(j), 0.0,
+                                                 t0_days * DAY, R + 400e3, R + 1200e3,
+                                                 j2=J2, mu=MU)  # fmt: skip
+    longer = 0
+    for e in range(len(i)):
+        arrive, dv = scan(orbits, i[e], j[e], 0.0, "table3", laps=1)
+        coast = arrive - dv / f / DAY
+        fits = coast <= t0_days
+        if not fits.any():
+            assert not np.isfinite(choice.dv[e])
+            continue
+        # as cheap as the scan's cheapest within T0 of coast (to the pre-optimisation's grid)
+        assert choice.dv[e] == pytest.approx(dv[fits].min(), abs=0.5)
+        assert choice.duration[e] / DAY - choice.dv[e] / f / DAY <= t0_days + 1e-6
+        longer += choice.duration[e] / DAY > t0_days
+    assert longer > 0  # the spirals and plane change on top of T0

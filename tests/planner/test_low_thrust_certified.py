@@ -70,11 +70,11 @@ def test_an_acceleration_too_low_for_any_plan_is_proven_infeasible():
 
 @pytest.mark.slow
 def test_the_papers_method_plans_a_low_thrust_mission_that_flies():
-    """method = "paper" with the low-thrust model (a longer T0: its legs take months): a
-    plan of the model that ends in time, never below the certified bound (the paper's
-    method is local: it may stop above the optimum, as here at n = 4)."""
-    mission = Mission(n=4, transfer="low-thrust", vehicle={"accel_mps2": 1e-4},
-                      preopt_days=100.0)  # fmt: skip
+    """method = "paper" with the low-thrust model and the paper's T0 (two months of coast;
+    the spirals come on top): a plan of the model that ends in time, never below the
+    certified bound (the paper's method is local: it may stop above the optimum, as here
+    at n = 4)."""
+    mission = Mission(n=4, transfer="low-thrust", vehicle={"accel_mps2": 1e-4})
     certified = solve(Catalog.paper_case(), mission)
     paper = solve(Catalog.paper_case(), mission, solver=SolverOptions(method="paper"))
     assert paper.lower_bound_mps is None and paper.status.is_solved

@@ -452,7 +452,8 @@ def _relax_message(mission: Mission, edges_summary: str) -> str:
         f"pre-optimisation bound (preopt_days = {mission.preopt_days:g}), a higher "
         f"dv_max_mps ({mission.dv_max_mps:g}), a wider drift altitude band "
         f"{mission.drift_altitude_km}, fewer debris (n), or shorter operations (deorbit_days)"
-        + ("; with low thrust each edge's spirals and plane change take part of preopt_days "
-           "(the paper case at 1e-4 m/s^2 needs about 100), and the certified method "
-           "(the default) does not use it" if mission.transfer == "low-thrust" else "")
+        + ("; with low thrust T0 bounds each leg's coast (the spirals and the plane change "
+           "come on top): more thrust (vehicle accel_mps2 or thrust_n) shortens them, and the "
+           "certified method (the default) does not use T0" if mission.transfer == "low-thrust"
+           else "")
     )
