@@ -20,6 +20,19 @@ from collections.abc import Iterable
 
 MAX_REPORTED = 20
 """Problems listed in a :class:`CatalogError` message (all are kept in ``problems``)."""
+MAX_LISTED = 12
+"""Items a message lists of a list the user controls (ids, columns): a line stays readable."""
+
+
+def listing(items: Iterable, limit: int = MAX_LISTED) -> str:
+    """``"a, b, c"``, or ``"a, b, c, ... and 348 more"`` past ``limit`` items.
+
+    For messages that name what a user gave: a header of 400 columns or 360 unknown ids
+    must not become one line of thousands of characters.
+    """
+    items = [str(item) for item in items]
+    more = f", ... and {len(items) - limit} more" if len(items) > limit else ""
+    return ", ".join(items[:limit]) + more
 
 
 class SdcError(Exception):

@@ -71,3 +71,29 @@ def test_the_papers_method_with_low_thrust_says_what_t0_bounds_and_what_would_he
     mission = Mission(transfer="low-thrust", vehicle={"accel_mps2": 3e-5})
     with pytest.raises(MissionInfeasible, match="T0 bounds each leg's coast.*more thrust"):
         solve(Catalog.paper_case(), mission, solver=SolverOptions(method="paper"))
+
+
+def test_a_header_of_hundreds_of_columns_is_not_listed_whole(tmp_path):
+    """A wide CSV without the orbit columns (a spreadsheet export, 400 columns): the
+    message names what is missing and a few of the columns found, on short lines (it was
+    one line of thousands of characters), through a real subprocess."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "wide.csv"
+    names = [f"col{k}" for k in range(400)]
+    path.write_text("id," + ",".join(names) + "\n1," + ",".join("0" * 400) + "\n")
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "run", "--catalog", str(path),
+                           "--out", str(tmp_path / "out")], capture_output=True, text=True,
+                          timeout=120)  # fmt: skip
+    assert done.returncode == 2, done.stderr
+    assert "missing required column(s) 'a_km'" in done.stderr
+    assert "'col0'" in done.stderr and "and 389 more" in done.stderr
+    assert max(len(line) for line in done.stderr.splitlines()) < 400
+
+
+def test_hundreds_of_unknown_ids_are_not_listed_whole():
+    with pytest.raises(ValueError) as caught:
+        Catalog.paper_case().subset([f"X{k}" for k in range(360)])
+    message = str(caught.value)
+    assert "'X0'" in message and "and 348 more" in message and len(message) < 500

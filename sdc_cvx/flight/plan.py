@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..errors import CatalogError, InputError, SdcError
+from ..errors import CatalogError, InputError, SdcError, listing
 from ..inputs.catalog import Catalog
 from ..physics.orbits import SECONDS_PER_DAY
 from .ephemeris import missing_phase
@@ -162,7 +162,7 @@ class FlightPlan:
         ids = catalog.frame["id"].astype(str)
         missing = [name for name in path if name not in set(ids)]
         if missing:
-            raise FlightError(f"{catalog.source}: no debris {', '.join(map(repr, missing))} of "
+            raise FlightError(f"{catalog.source}: no debris {listing(map(repr, missing))} of "
                               "the plan (the catalog changed since the run?)")  # fmt: skip
         rows = [int(np.flatnonzero(ids.to_numpy() == name)[0]) for name in path]
         frame = catalog.frame.iloc[rows].reset_index(drop=True)

@@ -42,7 +42,7 @@ from importlib import resources
 import numpy as np
 import pandas as pd
 
-from ..errors import MAX_REPORTED, CatalogError
+from ..errors import MAX_REPORTED, CatalogError, listing
 from ..physics.orbits import J2, SECONDS_PER_DAY, raan_rate
 from .catalog_rows import (
     MAX_A_KM,
@@ -398,12 +398,9 @@ class Catalog:
         known = self.ids
         unknown = [value for value in dict.fromkeys(wanted) if value not in known]
         if unknown:
-            shown = ", ".join(repr(value) for value in unknown)
-            listed = ", ".join(repr(value) for value in known[:MAX_REPORTED])
-            more = ", ..." if len(known) > MAX_REPORTED else ""
-            raise CatalogError(
-                f"{self.source}: unknown debris id(s) {shown}; the catalog has {listed}{more}"
-            )
+            shown = listing(map(repr, unknown))
+            raise CatalogError(f"{self.source}: unknown debris id(s) {shown}; the catalog has "
+                               f"{listing(map(repr, known), MAX_REPORTED)}")  # fmt: skip
         if not wanted:
             raise CatalogError(f"{self.source}: subset needs at least one debris id")
         keep = self.frame["id"].isin(set(wanted)).to_numpy()

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..errors import CatalogError, CatalogWarning
+from ..errors import CatalogError, CatalogWarning, listing
 
 REQUIRED_COLUMNS = ("id", "a_km", "e", "inc_deg", "raan_deg")
 """Columns every catalog must have."""
@@ -135,7 +135,7 @@ def header_problems(columns: list, source: str) -> list[str]:
     if missing:
         problems.append(
             f"{source}, header: missing required column(s) {', '.join(map(repr, missing))}; "
-            f"found {', '.join(map(repr, names))}"
+            f"found {listing(map(repr, names))}"
         )
     return problems
 

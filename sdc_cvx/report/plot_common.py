@@ -10,6 +10,7 @@ import numpy as np
 from matplotlib import colormaps
 from matplotlib.figure import Figure
 
+from ..errors import listing
 from ..inputs.catalog import Catalog
 from ..physics.orbits import R_EARTH
 
@@ -75,7 +76,7 @@ def _positions(solution: Solution, catalog: Catalog) -> dict[str, int]:
     missing = sorted({debris for debris in wanted if debris not in index})
     if missing:
         raise ValueError(
-            f"debris {', '.join(missing)} of the solution are not in the catalog "
+            f"debris {listing(missing)} of the solution are not in the catalog "
             f"({catalog.source}); plot a solution with the catalog it was solved for"
         )
     return index

@@ -18,6 +18,7 @@ import pandas as pd
 from sgp4 import omm
 from sgp4.api import Satrec
 
+from ...errors import listing
 from ..catalog import Catalog, read_text
 from ..sgp4_sets import brouwer_a_km
 from ._common import (
@@ -216,7 +217,7 @@ def _omm_csv(text: str, source: str):
     missing = [name for name in _OMM_REQUIRED if name not in header]
     if missing:
         _fail(source, f"header: missing OMM column(s) {', '.join(missing)}; found "
-                      f"{', '.join(header) or 'no header'}")  # fmt: skip
+                      f"{listing(header) or 'no header'}")  # fmt: skip
     return records
 
 
