@@ -116,7 +116,8 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
 
     result = certify(orbits, certified_nodes(nodes, mission), a_low, a_high, solver=solver,
                      gap_rel=solver.gap, time_limit_s=solver.time_limit_s,
-                     on_iteration=on_iteration, progress=log, names=ids, stop=stop)  # fmt: skip
+                     on_iteration=on_iteration, progress=log, names=ids, stop=stop,
+                     fallback=True)  # fmt: skip
     if result.status == "infeasible":
         raise MissionInfeasible(_infeasible_message(mission))
     if result.status == "no_plan":

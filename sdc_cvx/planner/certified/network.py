@@ -43,6 +43,15 @@ class OutOfTime(Exception):
     """The time limit ran out during the setup, before any plan."""
 
 
+FALLBACK_RESERVE = 0.25
+"""With a fallback (``search.fallback``), the cost tables stop as soon as they are
+projected to end within this share of the time limit (at least ``FALLBACK_MIN_S``) of
+it: the rest goes to a plan without them (:mod:`~sdc_cvx.planner.certified.greedy`)."""
+FALLBACK_MIN_S = 2.0
+PROJECTION_S = 1.0
+"""Seconds of tables before their projection is trusted."""
+
+
 SETUP_PROGRESS_S = 5.0
 """Seconds between two progress lines of the edge cost tables."""
 
@@ -64,11 +73,19 @@ def cost_table_clock(search, every_s: float | None = None):
             raise OutOfTime(f"{why} while building the edge cost tables "
                             f"({done} of {total} edges in {now - started:.0f} s)")  # fmt: skip
         need = (now - started) * total / max(done, 1)
-        if not warned and done < total and started + need > search.deadline:
+        beyond = done < total and started + need > search.deadline
+        reserve = max(FALLBACK_RESERVE * (search.deadline - started), FALLBACK_MIN_S)
+        if done < total and getattr(search, "fallback", False) and now - started >= PROJECTION_S \
+                and started + need > search.deadline - reserve:  # fmt: skip
+            raise OutOfTime(f"the edge cost tables would need about {need:.0f} s of the "
+                            f"{search.deadline - started:.0f} s left")  # fmt: skip
+        if not warned and beyond:
             warned = True
+            then = ("a greedy plan instead, with no useful bound" if getattr(
+                search, "fallback", False) else "the search will stop without a plan")
             search.say(f"  the edge cost tables alone need about {need:.0f} s, beyond the "
-                       f"time limit ({search.deadline - started:.0f} s left): the search will "
-                       "stop without a plan; raise the time limit")  # fmt: skip
+                       f"time limit ({search.deadline - started:.0f} s left): {then}; raise "
+                       "the time limit for a certified answer")  # fmt: skip
         if done >= total:  # the heartbeat's phase moves on with this line
             search.say(f"  cost tables done ({total} edges, {now - started:.0f} s); next: the "
                        "first network of date cells, its path bounds, cheap paths")  # fmt: skip

@@ -52,6 +52,7 @@ from ...network.dominance import path_cost_floor
 from ...physics.leg_bounds import LegCosts
 from ..fixed_path import PathProblem, PathSchedule, solve_path
 from .date_grid import grid_plans
+from .greedy import greedy_result
 from .network import CellNetwork, DateCells, OutOfTime, beam_paths, cost_table_clock, refine_cells
 from .relaxation import RelaxationResult, solve_relaxation
 from .results import CertifiedNodes, CertifiedPath, CertifiedResult, allowed_gap, within_gap
@@ -86,9 +87,10 @@ class _Search:
 
     def __init__(self, orbits, nodes: CertifiedNodes, a_low, a_high, *, deadline, say,
                  initial_cells, names=None, path_tol_rel=0.0, gap_abs_mps=PATH_TOL_MPS,
-                 ceiling_mps=-np.inf, known=None, stop=None):  # fmt: skip
+                 ceiling_mps=-np.inf, known=None, stop=None, fallback=False):  # fmt: skip
         n = len(nodes.ops_days)
         self.stop = stop or (lambda: False)  # asked by the cost tables' chunks too
+        self.fallback = fallback  # the tables may stop early for a greedy plan
         self.names = [str(k) for k in range(n)] if names is None else [str(v) for v in names]
         # no finer than the model's box bounds resolve a mission (low thrust: mm/s a leg)
         self.path_tol_rel = path_tol_rel
@@ -266,7 +268,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
             split_pieces: int = 2, gap_abs_mps: float = PATH_TOL_MPS,
             stop_above_mps: float = np.inf, ceiling_mps: float = -np.inf,
             known=None, path_tol_rel: float | None = None, date_grid: bool | None = None,
-            stop: Callable[[], bool] | None = None) -> CertifiedResult:  # fmt: skip
+            stop: Callable[[], bool] | None = None,
+            fallback: bool = False) -> CertifiedResult:  # fmt: skip
     """Minimum-ΔV plan of the mission with a certified lower bound (see module docstring).
 
     Parameters
@@ -319,6 +322,11 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     stop : callable, optional
         Asked between steps; True ends the search as a time limit does (the best plan
         with its gap): the command line's Ctrl-C.
+    fallback : bool
+        When the time limit cannot cover the edge cost tables, stop them early and
+        return a greedy plan that flies (:mod:`~sdc_cvx.planner.certified.greedy`),
+        ``feasible`` with the bound every plan has (its node costs' least sum), rather
+        than no plan.  For a single mission; a campaign's pricing leaves it off.
 
     Notes
     -----
@@ -344,8 +352,11 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                          say=progress or (lambda line: None), initial_cells=initial_cells,
                          names=names, gap_abs_mps=gap_abs_mps,
                          path_tol_rel=gap_rel / 2 if path_tol_rel is None else path_tol_rel,
-                         ceiling_mps=ceiling_mps, known=known, stop=stop)  # fmt: skip
+                         ceiling_mps=ceiling_mps, known=known, stop=stop,
+                         fallback=fallback)  # fmt: skip
     except OutOfTime as err:
+        if fallback and not stop():
+            return greedy_result(orbits, nodes, a_low, a_high, deadline, clock, str(err))
         return CertifiedResult((), None, np.inf, -np.inf, "no_plan", [], 0, 0,
                                time.perf_counter() - clock, (str(err),),
                                complete=False)  # fmt: skip
