@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import importlib.util
 import sys
+import time
 import warnings
 from pathlib import Path
 
@@ -17,6 +18,7 @@ from ..errors import (
     SolverFailure,
     SweepError,
 )
+from .budget import WRITE_S, search_limit
 from .exits import (
     INPUT_ERROR,
     INTERRUPTED,
@@ -68,6 +70,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     and one run folder per mission.  Exit codes: 2 invalid input (nothing written),
     3 infeasible campaign (campaign.json says why), 4 solver failure.
     """
+    started = time.perf_counter()  # --time-limit covers the whole command (cli/budget.py)
     from ..campaign.pricing_runs import ignored_options, pricings_at_once
     from ..campaign.search import solve_campaign
     from ..planner.size_guard import size_problem
@@ -126,6 +129,11 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         f"{', '.join(str(m.n) for m in campaign.missions)}) from {len(catalog)} candidates of "
         f"{catalog.source}; gap {gap:g}."
     )
+    if time_limit_s is not None:  # covers the command: a folder per mission to write after
+        limit, time_limit_s = time_limit_s, search_limit(
+            time_limit_s, started, WRITE_S * (len(campaign) + 1))  # fmt: skip
+        header += (f"\nThe search gets {time_limit_s:.1f} s of the {limit:g} s limit (the rest "
+                   "reads the catalog and writes the campaign folder).")  # fmt: skip
     info(header)
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
     live_log, stream, made = open_progress_log(out_dir)

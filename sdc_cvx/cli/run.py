@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import sys
+import time
 import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -12,6 +14,7 @@ import click
 
 from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, SolverFailure
 from ..milp.types import DEFAULT_BACKEND
+from .budget import run_writing_s, search_limit
 from .exits import (
     INFEASIBLE,
     INPUT_ERROR,
@@ -131,6 +134,7 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
     needs more propellant than the vehicle's tank holds: its folder is written), 4 solver
     failure.
     """
+    started = time.perf_counter()  # --time-limit covers the whole command (cli/budget.py)
     from ..network.edges import preoptimize
     from ..planner.api import ignored_options, solve
     from ..planner.size_guard import size_problem
@@ -190,6 +194,12 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
 
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
     header = run_header(catalog, mission, solver)
+    if solver.method == "certified" and solver.time_limit_s is not None:
+        limit = solver.time_limit_s
+        solver = dataclasses.replace(solver, time_limit_s=search_limit(
+            limit, started, run_writing_s(len(catalog))))  # fmt: skip
+        header += (f"\nThe search gets {solver.time_limit_s:.1f} s of the {limit:g} s limit "
+                   "(the rest reads the catalog and writes the run folder).")  # fmt: skip
     info(header)
     # the progress goes to OUT.log beside the run folder while the run lasts (a killed run
     # leaves it there, the next run into OUT replaces it), then into the folder as run.log;

@@ -1,14 +1,15 @@
 """A plan that flies without the cost tables, for a time limit too short to build them.
 
 The certified search starts by tabulating every edge's cost over the drift band (about
-13 s for the 230 880 edges of 481 TLE fragments).  When the time limit cannot cover that,
-:func:`greedy_plan` still gives the user a plan: chains of Part IV-B's pre-optimised leg
-(the cheapest drift transfer of each edge from the date the vehicle is there, within a
-share of the time left), started from the cheapest first legs and extended to the
-cheapest next debris; each chain's schedule is then optimised in the true model on its
-own edges (:func:`~sdc_cvx.planner.fixed_path.solve_path`), so the plan flies and ends
-by T_max.  Nothing is proven about the optimum: the search reports it as ``feasible``
-with the bound every plan has, 0.
+15 s for the 230 880 edges of 481 TLE fragments).  When the tables are projected to take
+most of the time limit, :func:`greedy_plan` first finds a plan without them: chains of
+Part IV-B's pre-optimised leg (the cheapest drift transfer of each edge from the date the
+vehicle is there, within a share of the time left), started from the cheapest first
+legs and extended to the cheapest next debris; each chain's schedule is then optimised
+in the true model on its own edges (:func:`~sdc_cvx.planner.fixed_path.solve_path`), so
+the plan flies and ends by T_max.  The tables then go on: if they finish, the plan is
+the search's first incumbent; if the limit stops them, :func:`greedy_result` is the
+answer, ``feasible`` with the bound every plan has (nothing more is proven).
 
 References
 ----------
@@ -147,23 +148,16 @@ def _schedule(orbits, nodes, path, a_low, a_high, deadline) -> PathSchedule | No
     return schedule if schedule.feasible else None
 
 
-def greedy_result(orbits, nodes: CertifiedNodes, a_low, a_high, deadline, clock,
-                  why: str) -> CertifiedResult:  # fmt: skip
-    """The search's result when its tables cannot be built in time: a greedy plan, or none.
+def greedy_result(nodes: CertifiedNodes, plan, clock: float, why: str) -> CertifiedResult:
+    """The search's result when its tables could not be built in time: the greedy
+    ``plan`` (path, schedule) found while they were, ``feasible``.
 
-    Its bound is the least sum of L + 1 node costs (every transfer costs >= 0); ``clock``
+    Its bound is :meth:`CertifiedNodes.least_cost`; ``clock``
     is when the search started (``time.perf_counter()``), ``why`` what stopped the tables.
     """
-    found = greedy_plan(orbits, nodes, a_low, a_high, deadline=deadline)
     seconds = time.perf_counter() - clock
-    usable = np.ones(len(nodes.cost_mps), dtype=bool)
-    usable[list(nodes.excluded)] = False
-    lower = float(np.sort(nodes.cost_mps[usable])[:nodes.legs + 1].sum())
-    if found is None:
-        return CertifiedResult((), None, np.inf, lower, "no_plan", [], 0, 0, seconds,
-                               (why, "no greedy plan flew in the time left"),
-                               complete=False)  # fmt: skip
-    path, schedule = found
+    lower = nodes.least_cost()
+    path, schedule = plan
     upper = schedule.upper_mps + float(nodes.cost_mps[list(path)].sum())
     note = (f"{why}: a greedy plan (chains of pre-optimised legs, each scheduled exactly), "
             "with no useful bound; raise the time limit for a certified answer")

@@ -40,14 +40,20 @@ BOUND_CHUNK = 200_000
 
 
 class OutOfTime(Exception):
-    """The time limit ran out during the setup, before any plan."""
+    """The time limit ran out during the setup, before any plan (``plan``: a greedy one
+    found on the way, or None)."""
+
+    def __init__(self, message: str, plan=None):
+        super().__init__(message)
+        self.plan = plan
 
 
-FALLBACK_RESERVE = 0.25
-"""With a fallback (``search.fallback``), the cost tables stop as soon as they are
-projected to end within this share of the time limit (at least ``FALLBACK_MIN_S``) of
-it: the rest goes to a plan without them (:mod:`~sdc_cvx.planner.certified.greedy`)."""
-FALLBACK_MIN_S = 2.0
+FALLBACK_RESERVE = 0.5
+"""With a fallback (``search.fallback``), when the cost tables are projected to end in
+the last half of the time limit or past it, a plan is first found without them
+(``search.find_greedy``, :mod:`~sdc_cvx.planner.certified.greedy`), then the tables go
+on: after tables that took half the limit, the search itself seldom finds a first plan
+in the other half (481 fragments: tables about 15 s, a first plan about as long after)."""
 PROJECTION_S = 1.0
 """Seconds of tables before their projection is trusted."""
 
@@ -63,29 +69,33 @@ def cost_table_clock(search, every_s: float | None = None):
     and ``stop`` (read at each chunk) and ``say``."""
     every_s = SETUP_PROGRESS_S if every_s is None else every_s
     started = last = time.perf_counter()
-    warned = False
+    warned = greedy = False
+    fallback = getattr(search, "fallback", False)
 
     def on_chunk(done: int, total: int) -> None:
-        nonlocal last, warned
+        nonlocal last, warned, greedy
         now = time.perf_counter()
         if done < total and (now >= search.deadline or search.stop()):
             why = "interrupted" if search.stop() else "time limit reached"
             raise OutOfTime(f"{why} while building the edge cost tables "
-                            f"({done} of {total} edges in {now - started:.0f} s)")  # fmt: skip
+                            f"({done} of {total} edges in {now - started:.0f} s)",
+                            getattr(search, "greedy", None))  # fmt: skip
         need = (now - started) * total / max(done, 1)
         beyond = done < total and started + need > search.deadline
-        reserve = max(FALLBACK_RESERVE * (search.deadline - started), FALLBACK_MIN_S)
-        if done < total and getattr(search, "fallback", False) and now - started >= PROJECTION_S \
-                and started + need > search.deadline - reserve:  # fmt: skip
-            raise OutOfTime(f"the edge cost tables would need about {need:.0f} s of the "
-                            f"{search.deadline - started:.0f} s left")  # fmt: skip
+        late = started + need > search.deadline - FALLBACK_RESERVE * (search.deadline - started)
+        if fallback and not greedy and done < total and late and now - started >= PROJECTION_S:
+            greedy = True
+            search.say(f"  the edge cost tables need about {need:.0f} s of the "
+                       f"{search.deadline - started:.0f} s left: first a plan without them")
+            search.find_greedy()
+            now = time.perf_counter()
         if not warned and beyond:
             warned = True
-            then = ("a greedy plan instead, with no useful bound" if getattr(
-                search, "fallback", False) else "the search will stop without a plan")
+            then = "with the plan found without them" if fallback else "without a plan"
             search.say(f"  the edge cost tables alone need about {need:.0f} s, beyond the "
-                       f"time limit ({search.deadline - started:.0f} s left): {then}; raise "
-                       "the time limit for a certified answer")  # fmt: skip
+                       f"time limit ({search.deadline - started:.0f} s left): the search "
+                       f"will stop {then}; raise the time limit for a certified "
+                       "answer")  # fmt: skip
         if done >= total:  # the heartbeat's phase moves on with this line
             search.say(f"  cost tables done ({total} edges, {now - started:.0f} s); next: the "
                        "first network of date cells, its path bounds, cheap paths")  # fmt: skip

@@ -42,6 +42,13 @@ class CertifiedNodes:
     j2: float
     model: object = field(default=IMPULSIVE)
 
+    def least_cost(self) -> float:
+        """A bound no plan is below [m/s], known before any search: its L + 1 node costs
+        at their least (every transfer costs >= 0)."""
+        usable = np.ones(len(self.cost_mps), dtype=bool)
+        usable[list(self.excluded)] = False
+        return float(np.sort(self.cost_mps[usable])[: self.legs + 1].sum())
+
 
 @dataclass(frozen=True)
 class CertifiedPath:

@@ -52,7 +52,7 @@ from ...network.dominance import path_cost_floor
 from ...physics.leg_bounds import LegCosts
 from ..fixed_path import PathProblem, PathSchedule, solve_path
 from .date_grid import grid_plans
-from .greedy import greedy_result
+from .greedy import greedy_plan, greedy_result
 from .network import CellNetwork, DateCells, OutOfTime, beam_paths, cost_table_clock, refine_cells
 from .relaxation import RelaxationResult, solve_relaxation
 from .results import CertifiedNodes, CertifiedPath, CertifiedResult, allowed_gap, within_gap
@@ -90,7 +90,8 @@ class _Search:
                  ceiling_mps=-np.inf, known=None, stop=None, fallback=False):  # fmt: skip
         n = len(nodes.ops_days)
         self.stop = stop or (lambda: False)  # asked by the cost tables' chunks too
-        self.fallback = fallback  # the tables may stop early for a greedy plan
+        self.fallback = fallback  # late tables: a greedy plan first (find_greedy)
+        self.greedy = None  # (path, schedule) of that plan
         self.names = [str(k) for k in range(n)] if names is None else [str(v) for v in names]
         # no finer than the model's box bounds resolve a mission (low thrust: mm/s a leg)
         self.path_tol_rel = path_tol_rel
@@ -113,6 +114,7 @@ class _Search:
             f"certified search: {n} debris, {len(self.edge_from)} edges, {nodes.legs} legs; "
             "cost tables of every edge"
         )
+        self.find_greedy = lambda: self._find_greedy(orbits, a_low, a_high)
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
                                    a_low, a_high, model=nodes.model,
                                    on_chunk=cost_table_clock(self))  # fmt: skip
@@ -137,6 +139,14 @@ class _Search:
 
     def node_cost(self, path) -> float:
         return float(np.sum(self.nodes.cost_mps[list(path)]))
+
+    def _find_greedy(self, orbits, a_low, a_high) -> None:
+        """A plan that flies without the cost tables (they will take most of the time)."""
+        self.greedy = greedy_plan(orbits, self.nodes, a_low, a_high, deadline=self.deadline)
+        if self.greedy is not None:
+            path, schedule = self.greedy
+            cost = schedule.upper_mps + self.node_cost(path)
+            self.say(f"  greedy plan {self.label(path)}: {cost:.2f} m/s; the tables go on")
 
     @property
     def level(self) -> float:
@@ -355,8 +365,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
                          ceiling_mps=ceiling_mps, known=known, stop=stop,
                          fallback=fallback)  # fmt: skip
     except OutOfTime as err:
-        if fallback and not stop():
-            return greedy_result(orbits, nodes, a_low, a_high, deadline, clock, str(err))
+        if err.plan is not None and not stop():
+            return greedy_result(nodes, err.plan, clock, str(err))
         return CertifiedResult((), None, np.inf, -np.inf, "no_plan", [], 0, 0,
                                time.perf_counter() - clock, (str(err),),
                                complete=False)  # fmt: skip
@@ -367,6 +377,8 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         for seed in seeds:
             if len(seed) == nodes.legs + 1:
                 search.try_path(seed, "seed")
+        if search.greedy is not None:
+            search.try_path(search.greedy[0], "greedy, before the tables were done")
         use_grid = nodes.legs >= GRID_LEGS if date_grid is None else date_grid
         if use_grid:  # near-optimal plans before any network: they prune
             search.say("  cheap plans from a grid of dates (a beam search)")
@@ -478,9 +490,11 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         search.notes.append(str(err))
         search.limited = True
     status = search.status(gap_rel)
-    return CertifiedResult(search.path, search.schedule, search.upper,
-                           min(search.proven, search.upper), status, rows, milp_solves,
-                           search.parts.count(), time.perf_counter() - clock,
+    # a plan held before any bound (a seed, a greedy plan, then the limit): the bound
+    # every plan has, never -inf
+    lower = max(min(search.proven, search.upper), nodes.least_cost())
+    return CertifiedResult(search.path, search.schedule, search.upper, lower, status, rows,
+                           milp_solves, search.parts.count(), time.perf_counter() - clock,
                            tuple(search.notes), edges=int(len(search.edge_from)),
                            paths_certified=len(search.settled),
                            paths=search.certified_paths(), complete=not search.limited,

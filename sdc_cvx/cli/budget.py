@@ -1,0 +1,42 @@
+"""A command's ``--time-limit`` covers the whole command: the search gets what reading
+the catalog took and writing the folder will take leave of it.
+
+The writing estimates were measured on this project's cases (a run folder's figures and
+tables, about a second; its pre-optimised edge table, 1.8 s for the 230 880 ordered
+pairs of 481 TLE fragments; a campaign, about a second per mission folder): a user who
+asks for 12 s gets the answer in about 12 s, not 12 s of search and then the folder.
+"""
+
+from __future__ import annotations
+
+import time
+
+WRITE_S = 1.0
+"""Figures and tables of one run folder [s]."""
+PAIR_S = 8e-6
+"""The run folder's pre-optimised edge table (edges.csv), per ordered pair [s]."""
+LEAST_SHARE = 0.25
+"""The search gets at least this share of the limit, whatever the estimates say."""
+
+
+def search_limit(limit_s: float | None, started: float, writing_s: float) -> float | None:
+    """Seconds the search may take of a command's ``limit_s`` (None: no limit).
+
+    Parameters
+    ----------
+    limit_s : float or None
+        The command's time limit [s].
+    started : float
+        ``time.perf_counter()`` when the command started.
+    writing_s : float
+        Estimate of what is left to do after the search [s].
+    """
+    if limit_s is None:
+        return None
+    left = limit_s - (time.perf_counter() - started) - writing_s
+    return max(left, LEAST_SHARE * limit_s)
+
+
+def run_writing_s(candidates: int) -> float:
+    """Estimate [s] of writing a run folder of ``candidates`` debris (edges.csv included)."""
+    return WRITE_S + PAIR_S * candidates * max(candidates - 1, 0)
