@@ -11,8 +11,16 @@ radius ``a_d`` in the band and drift inclination ``I_d`` in {I_i, I_j} flies a t
 spiral a_i -> a_d at I_i (A), a plane change I_i -> I_j at a_d (B), a coast on
 (a_d, I_d) (C: physically before B when I_d = I_i, the RAAN sums do not care), a spiral
 a_d -> a_j at I_j (D).  Its cost is dV_A + dV_B + dV_D; the coast is the smallest
-t_C >= 0 closing the RAAN at arrival, plus any whole number of relative laps.  A mission
-is a path of n debris, the vehicle at the first at t = 0, each leg leaving
+t_C >= 0 closing the RAAN at arrival, plus any whole number of relative laps.  Its
+duration D (departure to arrival: thrust time plus coast, operations not counted) must be
+at least ``min_transfer_days`` T_min (default 0): a leg whose smallest closing coast is
+shorter takes the fewest whole relative laps that make D >= T_min (it never just waits;
+at equal rates there are no laps: such a leg exists only if its thrust time reaches
+T_min).  That is ``D = T_min + ((phi - rho L) mod 2 pi) / rho`` when ``L = T_min -
+thrust time > 0`` (``phi`` the phase the coast closes at the relative rate ``rho``,
+``D = thrust time + (phi mod 2 pi) / rho`` otherwise): T_min enters everything below as
+a longer fixed part of the leg, ``max(thrust time, T_min)``, and a shifted phase.  A
+mission is a path of n debris, the vehicle at the first at t = 0, each leg leaving
 ``deorbit_days`` after it reached its origin, ending ``deorbit_days`` after reaching the
 last, by T_max.  Rules ``free`` (either inclination) and ``table3`` (I_d = max(I_i, I_j)
 only where rate(a_d, I_d) >= rate_j, I_d = min only where <=; everything when I_i = I_j).
@@ -22,7 +30,8 @@ How :func:`optimum` is exhaustive
 *Grid.*  Every leg's drift orbits are ``radii`` (default 2049, a 390.6 m step over the
 default 800 km band) equally spaced radii of the band plus the two debris radii (when in
 the band), times the allowed inclinations.  Every lap count that can still end by T_max
-is a separate state.  Dates are never discretised: each state carries its exact date.
+is a separate state, from the fewest that make the leg last T_min.  Dates are never
+discretised: each state carries its exact date.
 
 *Chaining.*  The first leg leaves at ``deorbit_days``; a state is (date, cost so far,
 back pointers).  Each middle leg takes every state times every grid orbit and lap count
@@ -31,25 +40,27 @@ product: for one grid orbit, the departure dates from which it arrives by the de
 are a few intervals in closed form (the wrapped RAAN gap is linear in the date between
 wraps), so "cheapest grid orbit of the last leg that fits, from date t" is a step
 function of t, built once per ordered pair (range-min painting over the interval
-endpoints) and read by binary search.  The last leg takes the smallest coast (extra laps
-cost nothing and only arrive later).  The plan it picks is replayed; if the step
-function's reading were wrong (a date on a wrap, to rounding) that state is recomputed
-directly over every grid orbit.
+endpoints) and read by binary search; with T_min the same intervals hold for the
+shifted phase and the longer fixed part.  The last leg takes the smallest coast lasting
+T_min (extra laps cost nothing and only arrive later).  The plan it picks is replayed;
+if the step function's reading were wrong (a date on a wrap, to rounding) that state is
+recomputed directly over every grid orbit.
 
 *Pruning, all by valid lower bounds of grid plans.*  For every ordered pair and grid
-orbit, the shortest duration over every departure date of the mission (thrust time plus
-the smallest wrapped gap over that window) gives a curve "cheapest leg cost vs duration
-budget" (nonincreasing, on 512 budget bins, rounded the safe way).  The min-plus
-convolution of the remaining legs' curves, read at the remaining budget
-``T_max - date - (legs left) deorbit``, bounds the rest of any state.  Paths are taken
-best-first by this bound (first the sum of the legs' cheapest costs with the whole
-budget each, then the convolution) and the search stops when the bound reaches the
-pruning threshold; states and (state, orbit) products whose cost plus bound reach it are
-dropped.  The threshold is ``(1 + margin) x`` the best plan found (a quick pass on every
-32nd radius of the middle legs gives the first one), so every (path, inclinations)
-combination whose grid optimum is within ``margin`` (default 0.2 %) of the grid optimum
-is kept: the search returns the exact optimum over the grid (paths x radii x
-inclinations x laps), not an approximation of it.
+orbit, the shortest duration over every departure date of the mission (the fixed part
+plus the smallest wrapped shifted phase over that window, so never below T_min) gives a
+curve "cheapest leg cost vs duration budget" (nonincreasing, on 512 budget bins, rounded
+the safe way).  The min-plus convolution of the remaining legs' curves, read at the
+remaining budget ``T_max - date - (legs left) deorbit``, bounds the rest of any state
+(another lap of a middle leg is tried only while ``(legs left) (deorbit + T_min)`` still
+fit).  Paths are taken best-first by this bound (first the sum of the legs' cheapest
+costs with the whole budget each, then the convolution) and the search stops when the
+bound reaches the pruning threshold; states and (state, orbit) products whose cost plus
+bound reach it are dropped.  The threshold is ``(1 + margin) x`` the best plan found (a
+quick pass on every 32nd radius of the middle legs gives the first one), so every (path,
+inclinations) combination whose grid optimum is within ``margin`` (default 0.2 %) of the
+grid optimum is kept: the search returns the exact optimum over the grid (paths x radii
+x inclinations x laps), not an approximation of it.
 
 *Refinement.*  Each kept combination's grid optimum is then zoomed: windows of +/- 2 steps
 around every leg's radius (both inclinations, all laps) with ``zoom_points`` (41) radii
@@ -71,16 +82,32 @@ Measured on 28 random cases (sso, cluster and mixed catalogs, N 6-8, n 3-4, T_ma
 1e-4 m/s^2): the grid optimum of 2049 radii is up to 6.8e-4 (513 radii: 7.7e-3) above the
 refined optimum; the refined optima from grids of 513, 2049 and 8193 radii agree within
 2.5e-5 relative (most within 1e-7); plain grids of 8193-20001 radii (self-tests) are
-never below the refined optimum.  Every returned plan is replayed leg by leg with the
-physics (:func:`replay`; end date <= T_max + 1e-6 s), so its cost is that of a plan that
-flies: the brute force is never below the true optimum.
+never below the refined optimum.
+
+A binding T_min makes the grid coarser in effect: a leg must then last between T_min and
+what T_max leaves, and at a slow relative rate the duration sweeps up to days per 100 m
+of radius, so the cheap plans can lie in slivers of radius narrower than a step (the
+last leg's window is [T_min, T_max - date]).  Measured on 40 random cases with T_min
+above a leg of the optimum without it (sso, cluster and mixed, N 6-8, n 3-4, T_max
+365.25 d, 1e-4 to 3e-4 m/s^2): the grid optimum of 2049 radii is up to 1.1e-2 above its
+refined optimum, which is within 1e-4 of the best plan known (the refined optima of 2049
+and 8193 radii and an outside solver's plan replayed here) in 36 cases and up to 4.3e-2
+above it in the others (no grid plan of the better path or inclinations within the
+margin); with 8193 radii within 5.3e-5 in all 40.  The answer stays exact over its grid;
+a tight reference under T_min wants a check that it does not move with ``radii``.
+
+Every returned plan is replayed leg by leg with the physics (:func:`replay`; end date <=
+T_max + 1e-6 s, every leg lasting T_min - 1e-6 s or more), so its cost is that of a plan
+that flies: the brute force is never below the true optimum.
 
 Readings of the model statement
 -------------------------------
 * When ``I_d = I_i`` the plane change is flown after the coast (A, C, B, D); the RAAN
   changes add up the same either way, so the closure does not depend on the order.
-* The last leg takes the smallest coast (extra laps cost nothing and only arrive later);
-  middle legs take every lap count that can still end by T_max.
+* The last leg takes the smallest coast lasting T_min (extra laps cost nothing and only
+  arrive later); middle legs take every lap count from there that can still end by T_max
+  (every later leg lasting T_min).  T_min bounds the leg (thrust and coast), never the
+  operations; a plan is held to it within ``TOL_S``, as to T_max.
 * Equal drift and target rates: the leg exists only with the gap already closed at
   arrival of the thrust phases (coast 0, no laps).  Such drift orbits are measure-zero on
   the grid (a drift orbit at the target's radius and inclination with e_j = 0).
@@ -324,8 +351,13 @@ class Plan:
         return getattr(self, key)
 
 
+class ShortLeg(ValueError):
+    """A replayed leg lasts less than T_min."""
+
+
 def replay(a_m, e, inc_rad, raan_rad, path, a_drift_m, inc_drift_rad, laps, *, accel_mps2,
-           rule=None, a_low=A_LOW, a_high=A_HIGH, deorbit_days=0.0) -> Plan:  # fmt: skip
+           rule=None, a_low=A_LOW, a_high=A_HIGH, deorbit_days=0.0, min_transfer_days=0.0,
+           tol_s=TOL_S) -> Plan:  # fmt: skip
     """Fly a plan leg by leg with the physics.
 
     Parameters
@@ -344,6 +376,11 @@ def replay(a_m, e, inc_rad, raan_rad, path, a_drift_m, inc_drift_rad, laps, *, a
         lie in the band [a_low, a_high] [m].
     deorbit_days : float
         Operations time at each debris [days].
+    min_transfer_days : float
+        T_min [days]: every leg must last (departure to arrival) at least T_min - ``tol_s``
+        (:class:`ShortLeg` otherwise).
+    tol_s : float
+        Rounding allowance of that check [s].
 
     Returns
     -------
@@ -363,6 +400,9 @@ def replay(a_m, e, inc_rad, raan_rad, path, a_drift_m, inc_drift_rad, laps, *, a
                 raise ValueError(f"drift orbit ({a_d}, {i_d}) of leg {i}->{j} not allowed")
         arrive, dv = leg(a_m[i], e[i], inc[i], raan[i], a_m[j], e[j], inc[j], raan[j],
                          a_d, i_d, t, accel_mps2, q)  # fmt: skip
+        if not float(arrive) - t >= float(min_transfer_days) * DAY - tol_s:
+            raise ShortLeg(f"leg {i}->{j} lasts {(float(arrive) - t) / DAY} days, less "
+                             f"than T_min = {min_transfer_days} days")  # fmt: skip
         departs.append(t / DAY)
         arrives.append(float(arrive) / DAY)
         dvs.append(float(dv))
@@ -387,7 +427,12 @@ def replay(a_m, e, inc_rad, raan_rad, path, a_drift_m, inc_drift_rad, laps, *, a
 
 class _Cells:
     """Drift orbits (radius x inclination) of the ordered pair i -> j allowed by the rule,
-    sorted by cost, with what the arrival date needs."""
+    sorted by cost, with what the arrival date needs.
+
+    With T_min a leg lasts ``fixed + ((phase0 + sigma t) mod 2 pi) / rho`` from date t:
+    ``fixed = max(thrust time, T_min)``, ``phase0`` the closing phase at t = 0 shifted by
+    ``-rho (fixed - thrust time)``, ``sigma`` the gap's signed rate, ``rho = |rel|``.
+    """
 
     def __init__(self, prob: _Problem, i: int, j: int, radii, incs):
         radii = np.asarray(radii, dtype=float)
@@ -412,6 +457,11 @@ class _Cells:
         with np.errstate(divide="ignore"):
             self.period = TWO_PI / np.abs(self.rel)
         self.upper = self.inc == ij  # inclination flag, for the combinations
+        self.t_min = prob.t_min
+        self.fixed = np.maximum(self.thr, self.t_min)
+        s = np.sign(self.rel)
+        self.phase0 = (s * (self.gap0 + self.rate_j * self.thr - self.draan)
+                       - np.abs(self.rel) * (self.fixed - self.thr))  # fmt: skip
 
     @property
     def size(self) -> int:
@@ -424,17 +474,36 @@ class _Cells:
         coast = coast_time(gap, self.rate_d[cols], self.rate_j, thr, self.draan[cols], laps)
         return t + thr + coast
 
+    def first_arrival(self, t, cols):
+        """Arrival dates [s] and lap counts of the legs from ``t`` [s] on the orbits
+        ``cols`` with the fewest laps that last T_min (date ``inf``: none)."""
+        t, cols = np.broadcast_arrays(np.asarray(t, dtype=float), np.asarray(cols))
+        arrive = self.arrival(t, cols)
+        laps = np.zeros(arrive.shape, dtype=np.int64)
+        if self.t_min <= 0.0:
+            return arrive, laps
+        short = np.flatnonzero((arrive - t < self.t_min) & np.isfinite(arrive))
+        period = self.period[cols[short]]
+        arrive[short[~np.isfinite(period)]] = np.inf  # equal rates: no laps to add
+        short, period = short[np.isfinite(period)], period[np.isfinite(period)]
+        need = np.maximum(np.ceil((self.t_min - (arrive[short] - t[short])) / period), 1.0)
+        laps[short] = need.astype(np.int64)
+        while short.size:  # one more lap where rounding left the leg short
+            arrive[short] = self.arrival(t[short], cols[short], laps[short])
+            short = short[arrive[short] - t[short] < self.t_min]
+            laps[short] += 1
+        return arrive, laps
+
     def min_duration(self, t_lo: float, t_hi: float):
         """Shortest duration [s] of each orbit over departures in [t_lo, t_hi] [s]."""
-        s = np.sign(self.rel)
-        phi0 = s * (self.gap0 + self.rate_j * self.thr - self.draan)
-        pa, pb = phi0 + s * self.gap_rate * t_lo, phi0 + s * self.gap_rate * t_hi
+        sigma = np.sign(self.rel) * self.gap_rate
+        pa, pb = self.phase0 + sigma * t_lo, self.phase0 + sigma * t_hi
         lo, hi = np.minimum(pa, pb), np.maximum(pa, pb)
         wraps = np.ceil(lo / TWO_PI) * TWO_PI <= hi
         w = np.where(wraps, 0.0, np.mod(lo, TWO_PI))
         with np.errstate(divide="ignore", invalid="ignore"):
             coast = np.where(self.rel != 0.0, w / np.abs(self.rel), 0.0)
-        return self.thr + coast
+        return self.fixed + coast
 
 
 class _LastLeg:
@@ -480,7 +549,7 @@ class _LastLeg:
         rel = cells.rel
         s = np.sign(rel)
         rho = np.abs(rel)
-        phi0 = s * (cells.gap0 + cells.rate_j * cells.thr - cells.draan)
+        phi0 = cells.phase0  # with T_min: shifted, and the fixed part for the thrust time
         sigma = s * cells.gap_rate
         pa, pb = phi0 + sigma * t_lo, phi0 + sigma * t_hi
         m_lo = np.floor(np.minimum(pa, pb) / TWO_PI)
@@ -496,7 +565,7 @@ class _LastLeg:
             with np.errstate(divide="ignore", invalid="ignore"):
                 ta = (TWO_PI * m - phi0) / sigma
                 tb = (TWO_PI * (m + 1) - phi0) / sigma
-                rhs = rho * (deadline - cells.thr) - phi0 + TWO_PI * m
+                rhs = rho * (deadline - cells.fixed) - phi0 + TWO_PI * m
                 cut = rhs / kappa
             left = np.where(sigma > 0, ta, np.where(sigma < 0, tb, -np.inf))
             right = np.where(sigma > 0, tb, np.where(sigma < 0, ta, np.inf))
@@ -507,7 +576,8 @@ class _LastLeg:
             rights.append(right[valid])
             ranks.append(index[valid])
         # equal rates: a leg only where the gap is closed; a whole interval when it stays so
-        still = ~moving & (cells.gap_rate == 0.0)
+        # (and only if the thrust time reaches T_min: no laps to add)
+        still = ~moving & (cells.gap_rate == 0.0) & (cells.thr >= cells.t_min)
         if still.any():
             coast = coast_time(cells.gap0, cells.rate_d[still], cells.rate_j, cells.thr[still],
                                cells.draan[still])  # fmt: skip
@@ -534,7 +604,7 @@ class _LastLeg:
     def exact(self, t: float):
         """Cheapest cost and orbit index from departure ``t`` [s], computed directly."""
         cols = np.arange(self.cells.size)
-        arrive = self.cells.arrival(t, cols)
+        arrive, _ = self.cells.first_arrival(t, cols)
         fits = np.flatnonzero(arrive <= self.deadline + TOL_S)
         if fits.size == 0:
             return np.inf, -1
@@ -575,7 +645,7 @@ class _Problem:
 
     def __init__(self, a_m, e, inc_rad, raan_rad, *, n, tmax_days, accel_mps2, rule, a_low,
                  a_high, deorbit_days, radii, coarse_every, zoom_points, zoom_levels,
-                 margin):  # fmt: skip
+                 margin, min_transfer_days=0.0):  # fmt: skip
         self.a, self.e, self.inc, self.raan = (
             np.asarray(x, dtype=float).ravel() for x in (a_m, e, inc_rad, raan_rad)
         )
@@ -591,6 +661,8 @@ class _Problem:
         self.tmax = float(tmax_days) * DAY
         self.deorbit_days = float(deorbit_days)
         self.dd = self.deorbit_days * DAY
+        self.min_transfer_days = float(min_transfer_days)
+        self.t_min = self.min_transfer_days * DAY  # every leg's duration at least
         self.deadline = self.tmax - self.dd  # last arrival
         self.budget = self.tmax - self.n * self.dd  # sum of the legs' durations
         self.radii = int(radii)
@@ -694,7 +766,7 @@ class _Problem:
                 offsets = np.repeat(np.cumsum(counts) - counts, counts)
                 cols = np.arange(total) - offsets
                 self.stats["products"] += total
-                base = cells.arrival(t[rows], cols)
+                base, first = cells.first_arrival(t[rows], cols)  # the fewest laps for T_min
                 cost = c[rows] + cells.dv[cols]
                 q = 0
                 while rows.size:
@@ -706,9 +778,11 @@ class _Problem:
                     new_c.append(cost[fits])
                     parent.append(rows[fits])
                     col.append(cols[fits])
-                    lap.append(np.full(int(fits.sum()), q))
-                    later = depart + cells.period[cols] <= self.tmax - legs_left * self.dd
+                    lap.append(first[fits] + q)
+                    room = self.tmax - legs_left * (self.dd + self.t_min)
+                    later = depart + cells.period[cols] <= room
                     rows, cols, base, cost = rows[later], cols[later], base[later], cost[later]
+                    first = first[later]
                     q += 1
             if not new_t:
                 return []
@@ -752,7 +826,8 @@ class _Problem:
                 return None
             _, idx, part = lasts.lookup(t[k : k + 1])
             last = lasts.parts[int(part[0])]
-            cand = self._rebuild(path, middles, history, k, last.cells, int(idx[0]), total[k])
+            cand = self._rebuild(path, middles, history, k, last.cells, int(idx[0]), total[k],
+                                 t[k])  # fmt: skip
             plan = self.replay(cand)
             if plan is not None and abs(plan.cost_mps - cand.cost) <= 1e-6 * max(1, cand.cost):
                 return cand
@@ -761,15 +836,17 @@ class _Problem:
             total[k] = c[k] + exact[p][0]
             if np.isfinite(total[k]):
                 cand = self._rebuild(path, middles, history, k, lasts.parts[p].cells,
-                                     exact[p][1], total[k])  # fmt: skip
+                                     exact[p][1], total[k], t[k])  # fmt: skip
                 plan = self.replay(cand)
                 if plan is not None:
                     return cand
                 total[k] = np.inf
         return None
 
-    def _rebuild(self, path, middles, history, k, last_cells, last_idx, cost):
-        a, inc, laps = [float(last_cells.a[last_idx])], [float(last_cells.inc[last_idx])], [0]
+    def _rebuild(self, path, middles, history, k, last_cells, last_idx, cost, depart):
+        _, last_laps = last_cells.first_arrival([depart], [last_idx])  # the fewest for T_min
+        a, inc = [float(last_cells.a[last_idx])], [float(last_cells.inc[last_idx])]
+        laps = [int(last_laps[0])]
         s = k
         for m in range(len(middles) - 1, -1, -1):
             parent, col, lap = history[m]
@@ -781,10 +858,15 @@ class _Problem:
                           tuple(laps[::-1]))  # fmt: skip
 
     def replay(self, cand: _Candidate) -> Plan | None:
-        """The candidate flown; None when it ends after T_max."""
-        plan = replay(self.a, self.e, self.inc, self.raan, cand.path, cand.a, cand.inc,
-                      cand.laps, accel_mps2=self.accel, rule=self.rule, a_low=self.a_low,
-                      a_high=self.a_high, deorbit_days=self.deorbit_days)  # fmt: skip
+        """The candidate flown; None when it ends after T_max or a leg is short of T_min
+        (to rounding: the dates of the search and of the replay may differ by ulps)."""
+        try:
+            plan = replay(self.a, self.e, self.inc, self.raan, cand.path, cand.a, cand.inc,
+                          cand.laps, accel_mps2=self.accel, rule=self.rule, a_low=self.a_low,
+                          a_high=self.a_high, deorbit_days=self.deorbit_days,
+                          min_transfer_days=self.min_transfer_days)  # fmt: skip
+        except ShortLeg:
+            return None
         return plan if plan.end_day * DAY <= self.tmax + TOL_S else None
 
     # -- the mission -----------------------------------------------------------------------
@@ -882,7 +964,7 @@ class _Problem:
     def solve(self) -> Plan | None:
         started = time.perf_counter()
         self.best_cost = np.inf
-        if self.budget < 0:
+        if self.budget < (self.n - 1) * self.t_min:
             return None
         # quick pass (every coarse_every-th radius on the middle legs) for a first threshold
         self.search(self.coarse, lambda best: best, limit=30)
@@ -910,8 +992,9 @@ class _Problem:
 
 
 def optimum(a_m, e, inc_rad, raan_rad, *, n, tmax_days, accel_mps2, rule, a_low=A_LOW,
-            a_high=A_HIGH, deorbit_days=0.0, radii=2049, coarse_every=32, zoom_points=41,
-            zoom_levels=3, margin=2e-3) -> Plan | None:  # fmt: skip
+            a_high=A_HIGH, deorbit_days=0.0, min_transfer_days=0.0, radii=2049,
+            coarse_every=32, zoom_points=41, zoom_levels=3,
+            margin=2e-3) -> Plan | None:  # fmt: skip
     """Cheapest mission of ``n`` debris by brute force (see the module docstring).
 
     Parameters
@@ -931,6 +1014,9 @@ def optimum(a_m, e, inc_rad, raan_rad, *, n, tmax_days, accel_mps2, rule, a_low=
         Drift radius band [m] (inclusive).
     deorbit_days : float
         Operations time at each debris [days].
+    min_transfer_days : float
+        T_min [days]: every leg (departure to arrival) lasts at least this, by whole
+        relative laps of its coast where needed.
     radii : int
         Radii spanning the band for every leg's grid (plus the debris radii).
     coarse_every : int
@@ -950,8 +1036,8 @@ def optimum(a_m, e, inc_rad, raan_rad, *, n, tmax_days, accel_mps2, rule, a_low=
     prob = _Problem(a_m, e, inc_rad, raan_rad, n=n, tmax_days=tmax_days,
                     accel_mps2=accel_mps2, rule=rule, a_low=a_low, a_high=a_high,
                     deorbit_days=deorbit_days, radii=radii, coarse_every=coarse_every,
-                    zoom_points=zoom_points, zoom_levels=zoom_levels,
-                    margin=margin)  # fmt: skip
+                    zoom_points=zoom_points, zoom_levels=zoom_levels, margin=margin,
+                    min_transfer_days=min_transfer_days)  # fmt: skip
     return prob.solve()
 
 
