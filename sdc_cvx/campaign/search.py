@@ -166,7 +166,7 @@ class _Campaign:
         for column in self.pool.columns:
             known.setdefault(column.launch, {})[column.nodes] = column.schedule
         out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left,
-                                      known=known.get(launch.index),
+                                      sent_at=time.time(), known=known.get(launch.index),
                                       path_tol_rel=self.gap_rel / 2))
                         for launch, kwargs in tasks])  # fmt: skip
         self.pricings += len(out)

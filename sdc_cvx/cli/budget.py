@@ -13,6 +13,9 @@ import time
 
 WRITE_S = 1.0
 """Figures and tables of one run folder [s]."""
+MISSION_FOLDER_S = 0.6
+"""One mission folder of a campaign, and the campaign's own files [s] (GTOC9, five
+missions: 3.5 s in all)."""
 PAIR_S = 8e-6
 """The run folder's pre-optimised edge table (edges.csv), per ordered pair [s]."""
 LEAST_SHARE = 0.25

@@ -18,7 +18,7 @@ from ..errors import (
     SolverFailure,
     SweepError,
 )
-from .budget import WRITE_S, search_limit
+from .budget import MISSION_FOLDER_S, search_limit
 from .exits import (
     INPUT_ERROR,
     INTERRUPTED,
@@ -131,7 +131,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     )
     if time_limit_s is not None:  # covers the command: a folder per mission to write after
         limit, time_limit_s = time_limit_s, search_limit(
-            time_limit_s, started, WRITE_S * (len(campaign) + 1))  # fmt: skip
+            time_limit_s, started, MISSION_FOLDER_S * (len(campaign) + 1))  # fmt: skip
         header += (f"\nThe search gets {time_limit_s:.1f} s of the {limit:g} s limit (the rest "
                    "reads the catalog and writes the campaign folder).")  # fmt: skip
     info(header)
