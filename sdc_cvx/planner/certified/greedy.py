@@ -86,6 +86,16 @@ def greedy_plan(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     return best
 
 
+def find_greedy(search, orbits, a_low: float, a_high: float) -> None:
+    """``search.greedy``: a plan that flies without the cost tables, said on the search's
+    log (the tables will take most of the time; ``search`` is the certified search)."""
+    search.greedy = greedy_plan(orbits, search.nodes, a_low, a_high, deadline=search.deadline)
+    if search.greedy is not None:
+        path, schedule = search.greedy
+        cost = schedule.upper_mps + search.node_cost(path)
+        search.say(f"  greedy plan {search.label(path)}: {cost:.2f} m/s; the tables go on")
+
+
 def _leg_budget(nodes: CertifiedNodes, depart_days: float, legs_left: int) -> float:
     """An even share [days] of the time left after ``depart_days`` for each leg still to
     fly, less the longest operations at each debris still to reach."""

@@ -52,7 +52,7 @@ from ...network.dominance import path_cost_floor
 from ...physics.leg_bounds import LegCosts
 from ..fixed_path import PathProblem, PathSchedule, solve_path
 from .date_grid import grid_plans
-from .greedy import greedy_plan, greedy_result
+from .greedy import find_greedy, greedy_result
 from .network import CellNetwork, DateCells, OutOfTime, beam_paths, cost_table_clock, refine_cells
 from .relaxation import RelaxationResult, solve_relaxation
 from .results import CertifiedNodes, CertifiedPath, CertifiedResult, allowed_gap, within_gap
@@ -114,7 +114,7 @@ class _Search:
             f"certified search: {n} debris, {len(self.edge_from)} edges, {nodes.legs} legs; "
             "cost tables of every edge"
         )
-        self.find_greedy = lambda: self._find_greedy(orbits, a_low, a_high)
+        self.find_greedy = lambda: find_greedy(self, orbits, a_low, a_high)
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
                                    a_low, a_high, model=nodes.model,
                                    on_chunk=cost_table_clock(self))  # fmt: skip
@@ -139,14 +139,6 @@ class _Search:
 
     def node_cost(self, path) -> float:
         return float(np.sum(self.nodes.cost_mps[list(path)]))
-
-    def _find_greedy(self, orbits, a_low, a_high) -> None:
-        """A plan that flies without the cost tables (they will take most of the time)."""
-        self.greedy = greedy_plan(orbits, self.nodes, a_low, a_high, deadline=self.deadline)
-        if self.greedy is not None:
-            path, schedule = self.greedy
-            cost = schedule.upper_mps + self.node_cost(path)
-            self.say(f"  greedy plan {self.label(path)}: {cost:.2f} m/s; the tables go on")
 
     @property
     def level(self) -> float:
@@ -490,8 +482,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         search.notes.append(str(err))
         search.limited = True
     status = search.status(gap_rel)
-    # a plan held before any bound (a seed, a greedy plan, then the limit): the bound
-    # every plan has, never -inf
+    # a plan held before any bound (a seed, a greedy plan): the bound every plan has
     lower = max(min(search.proven, search.upper), nodes.least_cost())
     return CertifiedResult(search.path, search.schedule, search.upper, lower, status, rows,
                            milp_solves, search.parts.count(), time.perf_counter() - clock,
