@@ -161,7 +161,7 @@ def solve_lp(columns, n_launches: int, n_debris: int, must_remove=()) -> MasterL
 
 
 def solve_ip(columns, n_launches: int, n_debris: int, must_remove=(), *,
-             solver: SolverOptions, costs=None) -> MasterPlan | None:  # fmt: skip
+             solver: SolverOptions, costs=None, at_least=None) -> MasterPlan | None:  # fmt: skip
     """The integer master over ``columns``: the cheapest campaign they make, or None.
 
     Parameters
@@ -174,6 +174,9 @@ def solve_ip(columns, n_launches: int, n_debris: int, must_remove=(), *,
     costs : array_like, optional
         Cost of each column [m/s] (default their ΔV; their lower bounds give a bound of
         every campaign made of these paths).
+    at_least : (array_like, float), optional
+        ``(weights, minimum)``: only campaigns whose columns' weights sum to at least
+        ``minimum`` (a max-value campaign's value, held while its ΔV is minimised).
 
     Returns
     -------
@@ -201,6 +204,8 @@ def solve_ip(columns, n_launches: int, n_debris: int, must_remove=(), *,
         constraints.append(debris[free, :] @ pick <= 1)
     if must.any():
         constraints.append(debris[np.flatnonzero(must), :] @ pick == 1)
+    if at_least is not None:
+        constraints.append(np.asarray(at_least[0], dtype=float) @ pick >= at_least[1])
     problem = cp.Problem(cp.Minimize(costs @ pick), constraints)
     exact = replace(solver, mip_gap=0.0, time_limit_s=None)
     report = solve_with_fallback(problem, chain_of(exact))

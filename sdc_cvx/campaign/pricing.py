@@ -31,7 +31,7 @@ from ..inputs.catalog import Catalog
 from ..inputs.mission import Mission
 from ..milp.types import SolverOptions
 from ..network.edges import drift_radius_bounds, node_orbits
-from ..planner.api import certified_nodes
+from ..planner.api import certified_nodes, solution_of
 from ..planner.certified import certify
 from ..planner.fixed_path import PathSchedule
 from ..planner.nodes import MissionNodes
@@ -210,3 +210,16 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     return Pricing(launch.index, columns, float(result.lower_mps), float(result.upper_mps),
                    result.status, time.perf_counter() - clock, result.notes,
                    result.complete)  # fmt: skip
+
+
+def mission_solution(launch: Launch, column: Column, status, backend: str):
+    """The :class:`~sdc_cvx.solution.Solution` of one chosen mission of a campaign (its
+    status is the campaign's; its lower bound bounds this path's schedules)."""
+    nodes = MissionNodes.of(launch.catalog, launch.mission)
+    orbits = node_orbits(nodes.catalog, launch.mission)
+    note = (f"mission {launch.index + 1} of a campaign, launched on day {launch.day:g}: its "
+            "status is the campaign's; lower_bound_mps bounds this path's schedules")  # fmt: skip
+    return solution_of(nodes, launch.mission, orbits, column.nodes, column.schedule,
+                       status=status, lower_bound_mps=column.lower_mps, backend=backend,
+                       notes=(note,), model_size={"launch_day": launch.day},
+                       timings={})  # fmt: skip

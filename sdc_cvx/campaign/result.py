@@ -65,6 +65,10 @@ class CampaignSolution:
     seconds : float
     notes : tuple of str
     gap_requested : float
+    value, value_bound : float or None
+        ``objective = "max-value"``: the value the campaign removes, and the most any
+        campaign could (None: not proven); ``lower_bound_mps`` then bounds the ΔV of the
+        campaigns of that value.
     """
 
     campaign: Campaign
@@ -80,6 +84,8 @@ class CampaignSolution:
     seconds: float = 0.0
     notes: tuple[str, ...] = ()
     gap_requested: float = 1e-3
+    value: float | None = None
+    value_bound: float | None = None
 
     @property
     def certified(self) -> bool:
@@ -142,6 +148,10 @@ class CampaignSolution:
                 f"mission {k + 1:<2d} day {day:8.2f}  {' -> '.join(mission.path):<40} "
                 f"{mission.total_dv_mps:8.2f} m/s  {mission.total_duration_days:7.2f} d"
             )
+        if self.value is not None:
+            bound = "not proven" if self.value_bound is None else f"{self.value_bound:g}"
+            lines.append(f"value     {self.value:g} removed (the most any campaign removes: "
+                         f"{bound})")  # fmt: skip
         lines.append(f"total dV  {self.total_dv_mps:.2f} m/s, {self.quality()}")
         if self.greedy.dv_mps is not None:
             rel = self.greedy_gap_rel()
@@ -160,7 +170,8 @@ class CampaignSolution:
         for k, (day, mission) in enumerate(zip(self.launch_days, self.missions, strict=True)):
             rows.append({
                 "mission": k + 1, "launch_day": day, "path": "->".join(mission.path),
-                "n": mission.mission.n, "total_dv_mps": mission.total_dv_mps,
+                "n": len(mission.path), "total_dv_mps": mission.total_dv_mps,
+                "value": float(self.campaign.value_of(mission.path).sum()),
                 "transfers_dv_mps": mission.transfers_dv_mps,
                 "operations_dv_mps": mission.operations_dv_mps,
                 "duration_days": mission.total_duration_days,
@@ -179,6 +190,9 @@ class CampaignSolution:
         return {
             "status": str(self.status),
             "certified": self.certified,
+            "objective": self.campaign.objective,
+            "value": self.value,
+            "value_bound": self.value_bound,
             "total_dv_mps": self.total_dv_mps,
             "lower_bound_mps": self.lower_bound_mps,
             "gap_mps": self.gap_mps,

@@ -45,13 +45,11 @@ from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, Solv
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
-from ..network.edges import node_orbits
-from ..planner.api import solution_of
 from ..planner.nodes import MissionNodes
 from ..planner.size_guard import size_problem
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
 from .master import solve_ip, solve_lp
-from .pricing import Column, Launch, Pricing
+from .pricing import Column, Launch, Pricing, mission_solution
 from .pricing_runs import (
     PricingRuns,
     check_options,
@@ -409,6 +407,11 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)
+    if campaign.objective == "max-value":
+        from .value import value_campaign
+
+        return value_campaign(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
+                              say=say, stop=stop or (lambda: False), clock=clock)  # fmt: skip
     launches = len(campaign)
     inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
     with PricingRuns(inline, executor, scheduler, workers, launches, stop, say) as run:
@@ -475,13 +478,5 @@ def _solution(search: _Campaign, greedy: GreedyCampaign, seconds: float) -> Camp
 
 
 def _mission_solution(search: _Campaign, column: Column, status: RunStatus):
-    launch = search.launches[column.launch]
-    nodes = MissionNodes.of(launch.catalog, launch.mission)
-    orbits = node_orbits(nodes.catalog, launch.mission)
-    note = (f"mission {launch.index + 1} of a campaign, launched on day {launch.day:g}: its "
-            "status is the campaign's; lower_bound_mps bounds this path's schedules")  # fmt: skip
-    return solution_of(nodes, launch.mission, orbits, column.nodes, column.schedule,
-                       status=status, lower_bound_mps=column.lower_mps,
-                       backend="+".join(sorted(search.backends)) or search.solver.backend,
-                       notes=(note,), model_size={"launch_day": launch.day},
-                       timings={})  # fmt: skip
+    return mission_solution(search.launches[column.launch], column, status,
+                            "+".join(sorted(search.backends)) or search.solver.backend)

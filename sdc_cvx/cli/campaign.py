@@ -126,7 +126,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     header = (
         f"Campaign of {len(campaign)} missions (launch days "
         f"{', '.join(f'{d:g}' for d in campaign.launch_days)}; n = "
-        f"{', '.join(str(m.n) for m in campaign.missions)}) from {len(catalog)} candidates of "
+        f"{', '.join(_count(campaign, k) for k in range(len(campaign)))}) from {len(catalog)} "
+        f"candidates of "
         f"{catalog.source}; gap {gap:g}."
     )
     if time_limit_s is not None:  # covers the command: a folder per mission to write after
@@ -202,3 +203,9 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         click.echo("\n".join(lines))
     if not solution.certified:
         click.echo(f"warning: {solution.status}; see the notes in campaign.json", err=True)
+
+
+def _count(campaign, k: int) -> str:
+    """Mission k's debris: ``n``, or ``n_min-n_max`` with a range."""
+    low, high = campaign.fewest(k), campaign.missions[k].n
+    return f"{high}" if low == high else f"{low}-{high}"

@@ -18,8 +18,10 @@ References
 from __future__ import annotations
 
 import numbers
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+
+import numpy as np
 
 from ..errors import MissionError
 from .mission import MAX_TMAX_DAYS, Mission, _ids_text
@@ -32,6 +34,10 @@ drag and the debris' own decay, which change the orbits over longer spans); a mi
 launch day plus its ``tmax_days`` stays within it, as a single mission's ``tmax_days`` does."""
 MAX_LAUNCH_DAY = MAX_CAMPAIGN_DAYS
 """The last launch day allowed [days after the start]."""
+OBJECTIVES = ("min-dv", "max-value")
+"""``min-dv``: exactly ``n`` debris per mission at the least total ΔV; ``max-value``: the
+most value removed, each mission within its ΔV budget and between ``n_min`` and ``n``
+debris, and among campaigns of equal value the least ΔV."""
 
 
 @dataclass(frozen=True)
@@ -50,6 +56,16 @@ class Campaign:
         The mission flown from each launch day (its ``tmax_days`` counts from it).
     must_remove : tuple of str
         Debris ids that some mission must remove.
+    objective : {"min-dv", "max-value"}
+        See :data:`OBJECTIVES`.
+    dv_budget_mps : tuple of float
+        ``max-value``: each mission's total ΔV budget [m/s] (one per launch).
+    n_min : tuple of int
+        ``max-value``: the fewest debris of each mission (one per launch; default its
+        ``n``, the most).
+    values : tuple of (str, float)
+        ``max-value``: the value of removing each debris (by id; a debris not named is
+        worth 0); empty: every debris is worth 1 (the most debris removed).
 
     Raises
     ------
@@ -63,6 +79,10 @@ class Campaign:
     launch_days: tuple[float, ...]
     missions: tuple[Mission, ...]
     must_remove: tuple[str, ...] = ()
+    objective: str = "min-dv"
+    dv_budget_mps: tuple[float, ...] = ()
+    n_min: tuple[int, ...] = ()
+    values: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self):
         if isinstance(self.launch_days, numbers.Real):
@@ -75,7 +95,17 @@ class Campaign:
         object.__setattr__(self, "launch_days", tuple(self.launch_days))
         object.__setattr__(self, "missions", tuple(self.missions))
         object.__setattr__(self, "must_remove", tuple(str(k) for k in self.must_remove))
-        problems = list(self._problems())
+        count = len(self.launch_days)
+        for name in ("dv_budget_mps", "n_min"):
+            value = getattr(self, name)
+            if isinstance(value, numbers.Real) and not isinstance(value, bool):
+                value = (value,)
+            value = tuple(value)
+            object.__setattr__(self, name, value * count if len(value) == 1 else value)
+        if isinstance(self.values, Mapping):
+            object.__setattr__(self, "values", tuple(self.values.items()))
+        object.__setattr__(self, "values", tuple((str(k), v) for k, v in self.values))
+        problems = list(self._problems()) + list(self._value_problems())
         if problems:
             raise MissionError("invalid campaign: " + "; ".join(problems))
 
@@ -116,12 +146,55 @@ class Campaign:
         if len(set(self.must_remove)) != len(self.must_remove):
             yield f"must_remove names a debris twice: {list(self.must_remove)}"
 
+    def _value_problems(self):
+        count = len(self.launch_days)
+        if self.objective not in OBJECTIVES:
+            yield f"objective must be one of {', '.join(OBJECTIVES)}, got {self.objective!r}"
+            return
+        if self.objective == "min-dv":
+            for name, said in (("dv_budget_mps", "dv_budget_mps"), ("values", "values"),
+                               ("n_min", "n ranges [n_min, n_max]")):  # fmt: skip
+                if getattr(self, name):
+                    yield f"{said} are for objective = 'max-value' (min-dv removes exactly n)"
+            return
+        budgets = self.dv_budget_mps
+        if len(budgets) != count:
+            yield (f"objective = 'max-value' needs dv_budget_mps, one per launch (or one for "
+                   f"all) [m/s], got {list(budgets) or 'none'}")  # fmt: skip
+        elif not all(_is_real(b) and np.isfinite(b) and b > 0 for b in budgets):
+            yield f"dv_budget_mps must be numbers > 0 [m/s], got {list(budgets)}"
+        if self.n_min:
+            bad = len(self.n_min) != count or not all(
+                isinstance(k, numbers.Integral) and not isinstance(k, bool) and 2 <= k <= m.n
+                for k, m in zip(self.n_min, self.missions, strict=False))  # fmt: skip
+            if bad:
+                yield (f"n ranges must be [n_min, n_max] with 2 <= n_min <= n_max, one per "
+                       f"launch, got n_min {list(self.n_min)} for n_max "
+                       f"{[m.n for m in self.missions]}")  # fmt: skip
+        bad_values = [(k, v) for k, v in self.values
+                      if not (_is_real(v) and np.isfinite(v) and v >= 0)]  # fmt: skip
+        if bad_values:
+            yield f"values must be numbers >= 0, got {bad_values[:5]}"
+        if self.must_remove:
+            yield "must_remove is for objective = 'min-dv' (max-value chooses what to remove)"
+
+    def fewest(self, k: int) -> int:
+        """The fewest debris mission ``k`` (0-based) removes."""
+        return self.n_min[k] if self.n_min else self.missions[k].n
+
+    def value_of(self, ids) -> np.ndarray:
+        """The value of removing each of ``ids`` (1 each without values; 0 if not named)."""
+        if not self.values:
+            return np.ones(len(ids))
+        table = dict(self.values)
+        return np.array([float(table.get(str(k), 0.0)) for k in ids])
+
     # ------------------------------------------------------------------ constructors
     @classmethod
     def of(cls, launch_days: Sequence[float], mission: Mission | None = None, *,
            n: int | Sequence[int] | None = None,
            tmax_days: float | Sequence[float] | None = None,
-           must_remove: Sequence[str] = ()) -> Campaign:  # fmt: skip
+           must_remove: Sequence[str] = (), **value_options) -> Campaign:  # fmt: skip
         """One mission per launch day, each ``mission`` with its own ``n`` and ``tmax_days``.
 
         Parameters
@@ -131,11 +204,21 @@ class Campaign:
         mission : Mission, optional
             Every mission's parameters (default ``Mission()``).
         n, tmax_days : int / float, or a sequence with one per launch, optional
-            Debris per mission and duration limit [days]; default ``mission``'s.
+            Debris per mission and duration limit [days]; default ``mission``'s.  With
+            ``objective = "max-value"`` an ``n`` may be a range ``[n_min, n_max]``.
         must_remove : sequence of str
+        value_options
+            ``objective``, ``dv_budget_mps``, ``values`` (see the class).
         """
         mission = Mission() if mission is None else mission
         days = (launch_days,) if isinstance(launch_days, numbers.Real) else tuple(launch_days)
+        if isinstance(n, Sequence) and any(isinstance(k, Sequence) for k in n):
+            ranges = [tuple(k) if isinstance(k, Sequence) else (k, k) for k in n]
+            if any(len(pair) != 2 for pair in ranges):
+                raise MissionError(f"invalid campaign: n ranges must be [n_min, n_max] pairs, "
+                                   f"got {list(n)}")  # fmt: skip
+            value_options = {"n_min": tuple(pair[0] for pair in ranges), **value_options}
+            n = [pair[1] for pair in ranges]
         counts = _per_launch("n", n, mission.n, len(days))
         limits = _per_launch("tmax_days", tmax_days, mission.tmax_days, len(days))
         try:
@@ -143,7 +226,7 @@ class Campaign:
                              for c, t in zip(counts, limits, strict=True))  # fmt: skip
         except MissionError as err:
             raise MissionError(f"invalid campaign: {err}") from None
-        return cls(days, missions, must_remove)
+        return cls(days, missions, must_remove, **value_options)
 
     @classmethod
     def yearly(cls, missions: int, mission: Mission | None = None, *,
@@ -172,8 +255,9 @@ class Campaign:
 
     @property
     def debris_removed(self) -> int:
-        """Debris removed by the whole campaign (the sum of the missions' n)."""
-        return sum(m.n for m in self.missions)
+        """Debris removed by the whole campaign at least (the sum of the missions' n, or
+        of their fewest with ranges)."""
+        return sum(self.fewest(k) for k in range(len(self.missions)))
 
     def check_candidates(self, catalog) -> None:
         """Raise :class:`MissionError` if the campaign cannot fit the catalog.
@@ -222,7 +306,10 @@ class Campaign:
             "tmax_days": [m.tmax_days for m in self.missions],
             "must_remove": list(self.must_remove),
             "missions": [m.to_dict() for m in self.missions],
-        }
+        } | ({} if self.objective == "min-dv" else {
+            "objective": self.objective, "dv_budget_mps": list(self.dv_budget_mps),
+            "n_min": [self.fewest(k) for k in range(len(self.missions))],
+            "values": dict(self.values)})  # fmt: skip
 
 
 def _per_launch(name, value, default, count):

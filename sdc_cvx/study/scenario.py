@@ -137,6 +137,9 @@ class Scenario:
     source : Path or None
         The scenario file read, if any.  Not compared: two scenarios with the same
         content are equal wherever they were read from.
+    catalog_values : Path or None
+        ``[catalog] values``: the table of each debris' value (``id,value``) read into
+        the campaign (``objective = "max-value"``).
     """
 
     catalog_path: Path | None = None
@@ -149,6 +152,8 @@ class Scenario:
     source: Path | None = field(default=None, compare=False)
     catalog_strict: bool = False
     catalog_raan_rates: str = "j2"
+    catalog_values: Path | None = None
+    catalog_values_columns: tuple[str, str] = ("id", "value")
 
     # ------------------------------------------------------------------ reading
     @classmethod
@@ -279,11 +284,19 @@ class Scenario:
             data["catalog"]["raan_rates"] = self.catalog_raan_rates
         if self.selection.to_dict():
             data["selection"] = self.selection.to_dict()
+        if self.catalog_values is not None:
+            data["catalog"]["values"] = str(self.catalog_values)
+            data["catalog"]["values_columns"] = list(self.catalog_values_columns)
         if self.campaign is not None:
-            data["campaign"] = {
-                key: self.campaign.to_dict()[key]
-                for key in ("launch_days", "n", "tmax_days", "must_remove")
-            }
+            campaign = self.campaign.to_dict()
+            data["campaign"] = {key: campaign[key]
+                                for key in ("launch_days", "n", "tmax_days", "must_remove")}
+            if self.campaign.objective != "min-dv":
+                data["campaign"] |= {
+                    "objective": campaign["objective"],
+                    "dv_budget_mps": campaign["dv_budget_mps"],
+                    "n": [[low, high] for low, high in zip(campaign["n_min"], campaign["n"],
+                                                          strict=True)]}  # fmt: skip
         if "vehicle" in data["mission"]:
             data["vehicle"] = data["mission"].pop("vehicle")
         return data
@@ -310,6 +323,8 @@ class Scenario:
                 lines.append(f"# no path: {PAPER_CASE}")
                 if self.catalog_raan_rates != "j2":
                     lines.append(f"raan_rates = {toml_value(self.catalog_raan_rates)}")
+                lines += [f"{key} = {toml_value(values[key])}"
+                          for key in ("values", "values_columns") if key in values]  # fmt: skip
                 continue
             unset = [key for key, value in values.items() if value is None]
             lines += [f"{key} = {toml_value(value)}" for key, value in values.items()

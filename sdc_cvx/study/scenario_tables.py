@@ -23,12 +23,13 @@ from dataclasses import dataclass
 from datetime import UTC, date, datetime, time
 from pathlib import Path
 
-from ..errors import ScenarioError
+from ..errors import CatalogError, ScenarioError
 from ..inputs.campaign import DEFAULT_PERIOD_DAYS, Campaign
 from ..inputs.catalog import RAAN_RATES, Catalog
 from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
 from ..inputs.selection import OBJECT_TYPES, select
+from ..inputs.values import read_values
 from ..inputs.vehicle import Vehicle
 from ..milp.types import MILP_BACKENDS, SolverOptions
 
@@ -116,20 +117,20 @@ class _Limit(float):
 
 TABLES = ("catalog", "mission", "solver", "selection", "campaign", "vehicle")
 """The tables a scenario file may have."""
-_CATALOG_KEYS = ("path", "format", "start", "strict", "raan_rates")
+_CATALOG_KEYS = ("path", "format", "start", "strict", "raan_rates", "values", "values_columns")
 _MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission) if f.name != "vehicle")
 _VEHICLE_KEYS = tuple(f.name for f in dataclasses.fields(Vehicle))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
 _SELECTION_KEYS = tuple(f.name for f in dataclasses.fields(Selection))
 _CAMPAIGN_KEYS = ("launch_days", "missions", "first_launch_day", "period_days", "n", "tmax_days",
-                  "must_remove")  # fmt: skip
+                  "must_remove", "objective", "dv_budget_mps")  # fmt: skip
 TABLE_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS,
               "selection": _SELECTION_KEYS, "campaign": _CAMPAIGN_KEYS,
               "vehicle": _VEHICLE_KEYS}  # fmt: skip
 """The keys each table may hold."""
 _TYPES = {
     "catalog": {"path": str, "format": str, "start": object, "strict": bool,
-                "raan_rates": str},  # start: _start
+                "raan_rates": str, "values": str, "values_columns": tuple[str, ...]},
     "mission": typing.get_type_hints(Mission),
     "solver": typing.get_type_hints(SolverOptions),
     "selection": typing.get_type_hints(Selection) | {"max_eccentricity": _Limit | None},
@@ -141,7 +142,9 @@ _TYPES = {
         "n": object,
         "tmax_days": object,
         "must_remove": tuple[str, ...],
-    },  # launch_days, n, tmax_days: _campaign
+        "objective": str,
+        "dv_budget_mps": object,
+    },  # launch_days, n, tmax_days, dv_budget_mps: _campaign
     "vehicle": typing.get_type_hints(Vehicle),
 }
 
@@ -201,19 +204,38 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
             "J2 rates of the elements; sgp4: each debris' rate fitted to its SGP4 "
             f"propagation), got {_show(catalog['raan_rates'])}"
         )
+    values_path, values = None, {}
+    if "values" in catalog:
+        values_path = (base / Path(catalog["values"]).expanduser()).resolve()
+        columns = tuple(catalog.get("values_columns", ("id", "value")))
+        if len(columns) != 2:
+            problems.append(f"catalog.values_columns must name two columns (the id's, the "
+                            f"value's), got {_show(list(columns))}")  # fmt: skip
+        else:
+            try:
+                values = read_values(values_path, columns)
+            except CatalogError as err:
+                problems.append(f"catalog.values: {err}")
     campaign = None
     if "campaign" in tables and mission is not None:
-        campaign = _campaign(tables["campaign"], mission, problems)
+        campaign = _campaign(tables["campaign"], mission, problems, values)
+    elif values_path is not None:
+        problems.append("catalog.values is for a campaign with objective = 'max-value' "
+                        "([campaign] table)")  # fmt: skip
     if problems:
         raise ScenarioError.collect(where, problems)
     return {"catalog_path": catalog_path, "catalog_format": catalog_format, "mission": mission,
             "solver": solver, "catalog_start": start, "selection": selection,
             "campaign": campaign, "catalog_strict": strict,
-            "catalog_raan_rates": raan_rates}  # fmt: skip
+            "catalog_raan_rates": raan_rates, "catalog_values": values_path,
+            "catalog_values_columns": tuple(catalog.get("values_columns",
+                                                        ("id", "value")))}  # fmt: skip
 
 
-def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign | None:
-    """The ``[campaign]`` table as a :class:`Campaign` of ``mission``s (problems reported)."""
+def _campaign(values: dict, mission: Mission, problems: list[str],
+              debris_values: dict) -> Campaign | None:  # fmt: skip
+    """The ``[campaign]`` table as a :class:`Campaign` of ``mission``s (problems reported);
+    ``debris_values`` from ``catalog.values``."""
     before = len(problems)
     days = values.get("launch_days")
     if days is not None and not (
@@ -222,14 +244,21 @@ def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign |
         problems.append(f"campaign.launch_days must be a non-empty array of numbers [days], "
                         f"got {_show(days)}")  # fmt: skip
     for key, kind, one, words in (("n", int, "an integer", "integers"),
-                                  ("tmax_days", float, "a number", "numbers")):  # fmt: skip
+                                  ("tmax_days", float, "a number", "numbers"),
+                                  ("dv_budget_mps", float, "a number", "numbers")):  # fmt: skip
         value = values.get(key)
         if value is None or _typed(value, kind)[1] is None:
             continue
-        if not (isinstance(value, list | tuple) and all(_typed(v, kind)[1] is None
-                                                        for v in value)):  # fmt: skip
-            problems.append(f"campaign.{key} must be {one} or an array of {words} (one per "
-                            f"launch), got {_show(value)}")  # fmt: skip
+
+        def fits(v, kind=kind, key=key):  # n: an integer or an [n_min, n_max] pair
+            pair = key == "n" and isinstance(v, list | tuple) and len(v) == 2
+            return all(_typed(w, kind)[1] is None for w in v) if pair else \
+                _typed(v, kind)[1] is None  # fmt: skip
+
+        if not (isinstance(value, list | tuple) and all(fits(v) for v in value)):
+            also = " ([n_min, n_max] pairs too)" if key == "n" else ""
+            problems.append(f"campaign.{key} must be {one} or an array of {words}{also} "
+                            f"(one per launch), got {_show(value)}")  # fmt: skip
     yearly = [key for key in ("missions", "first_launch_day", "period_days") if key in values]
     if days is not None and yearly:
         problems.append(
@@ -245,6 +274,11 @@ def _campaign(values: dict, mission: Mission, problems: list[str]) -> Campaign |
         return None
     options = {"n": values.get("n"), "tmax_days": values.get("tmax_days"),
                "must_remove": values.get("must_remove", ())}  # fmt: skip
+    if values.get("objective", "min-dv") != "min-dv" or "dv_budget_mps" in values:
+        budget = values.get("dv_budget_mps", ())
+        options |= {"objective": values.get("objective", "min-dv"),
+                    "dv_budget_mps": budget if isinstance(budget, list | tuple) else [budget],
+                    "values": debris_values}  # fmt: skip
     try:
         if days is not None:
             return Campaign.of([float(d) for d in days], mission, **options)

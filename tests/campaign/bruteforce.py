@@ -62,20 +62,24 @@ class CampaignOptimum:
     per_launch: tuple[dict, ...]  # launch -> {frozenset of ids: best dv}
 
 
+def best_sets(catalog: Catalog, day: float, n: int, tmax: float, rule: str) -> dict:
+    """Every debris set of n a mission launched on ``day`` removes: {frozenset: best dv}."""
+    moved = advanced(catalog, day)
+    middle, zoom = GRID[n]
+    en = Enumeration(moved, n, tmax, middle_count=middle, zoom_count=zoom, walk=8)
+    best: dict = {}
+    for plan in en.plans[rule]:
+        if np.isfinite(plan.dv):
+            key = frozenset(en.ids(plan))
+            best[key] = min(best.get(key, np.inf), plan.dv)
+    return best
+
+
 def campaign_optimum(
     catalog: Catalog, launch_days, ns, tmaxes, rule="table3", must_remove=()
 ) -> CampaignOptimum:
-    per_launch = []
-    for day, n, tmax in zip(launch_days, ns, tmaxes, strict=True):
-        moved = advanced(catalog, day)
-        middle, zoom = GRID[n]
-        en = Enumeration(moved, n, tmax, middle_count=middle, zoom_count=zoom, walk=8)
-        best: dict = {}
-        for plan in en.plans[rule]:
-            if np.isfinite(plan.dv):
-                key = frozenset(en.ids(plan))
-                best[key] = min(best.get(key, np.inf), plan.dv)
-        per_launch.append(best)
+    per_launch = [best_sets(catalog, day, n, tmax, rule)
+                  for day, n, tmax in zip(launch_days, ns, tmaxes, strict=True)]  # fmt: skip
     must = frozenset(str(k) for k in must_remove)
     value, sets = np.inf, ()
     options = [sorted(b.items(), key=lambda kv: kv[1]) for b in per_launch]
@@ -88,3 +92,39 @@ def campaign_optimum(
         if total < value:
             value, sets = total, tuple(chosen)
     return CampaignOptimum(float(value), sets, tuple(per_launch))
+
+
+
+@dataclass(frozen=True)
+class ValueOptimum:
+    value: float
+    dv_mps: float
+    sets: tuple[frozenset, ...]
+    margin_mps: float  # how near a set's dv comes to its launch's budget (grid error)
+
+
+def value_optimum(catalog: Catalog, launch_days, ranges, tmaxes, budgets, values: dict,
+                  rule="table3") -> ValueOptimum:  # fmt: skip
+    """The most valuable campaign: one set per launch of between n_min and n_max debris,
+    each flown within its launch's budget (total ΔV), no debris twice; among those of
+    the most value, the least ΔV (every choice enumerated)."""
+    options, margin = [], np.inf
+    for day, (low, high), tmax, budget in zip(launch_days, ranges, tmaxes, budgets,
+                                              strict=True):  # fmt: skip
+        sets = {}
+        for n in range(low, high + 1):
+            for key, dv in best_sets(catalog, day, n, tmax, rule).items():
+                margin = min(margin, abs(dv - budget))
+                if dv <= budget:
+                    sets[key] = dv
+        options.append(sorted(sets.items(), key=lambda kv: kv[1]))
+    best = (-np.inf, np.inf, ())
+    for choice in itertools.product(*options):
+        chosen = [c[0] for c in choice]
+        if len(frozenset().union(*chosen)) != sum(len(c) for c in chosen):
+            continue
+        worth = sum(values.get(d, 0.0) for c in chosen for d in c)
+        total = sum(c[1] for c in choice)
+        if worth > best[0] + 1e-9 or (abs(worth - best[0]) <= 1e-9 and total < best[1]):
+            best = (worth, total, tuple(chosen))
+    return ValueOptimum(float(best[0]), float(best[1]), best[2], float(margin))

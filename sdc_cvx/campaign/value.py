@@ -1,0 +1,191 @@
+"""The most valuable campaign: each mission within its ΔV budget and range of debris.
+
+``objective = "max-value"`` (:data:`~sdc_cvx.inputs.campaign.OBJECTIVES`, issue 27): the
+campaign that removes the most value, each mission k flying between ``n_min`` and ``n``
+debris for a total ΔV (operations included) of at most its budget ``B_k``; among
+campaigns of equal value, the least ΔV.
+
+How it is solved and why the answer is certified.  For every launch and every count n of
+its range, the certified search enumerates every path of n debris whose lower bound is
+under the budget (``certify``'s ``ceiling_mps``: it certifies each such path's best
+schedule and proves, by its relaxation, that every other path costs more than ``B_k``).
+A path whose schedule is within the budget is a mission that flies (a *column*); one
+whose bound is under the budget but whose best schedule is above it, within the path
+tolerance, is *undecided*.  The exact master then chooses one column per launch, each
+debris removed at most once: first the most value (an integer program), then, holding
+that value, the least ΔV.  The same master over the columns *and* the undecided paths,
+at their bounds, gives the most value any campaign could have and the least ΔV it could
+cost: the answer is ``optimal`` when the two agree within the gap.
+
+The enumeration grows with the number of paths under the budget: this is exact for the
+small and medium catalogs a programme is screened on, and stops at the time limit
+(``feasible``, with what is proven) on larger ones.
+
+References
+----------
+.. [1] M. Cerf, "Multiple space debris collecting mission - Debris selection and
+   trajectory optimization", Journal of Optimization Theory and Applications,
+   156(3), 761-796, 2013.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from ..errors import MissionInfeasible
+from ..inputs.campaign import Campaign
+from ..inputs.catalog import Catalog
+from ..milp.types import SolverOptions
+from ..solution import OPTIMAL_GAP_MPS, RunStatus
+from .master import solve_ip
+from .pricing import Column, Launch, mission_solution, price
+from .result import CampaignSolution, GreedyCampaign
+
+VALUE_TOL = 1e-9
+"""Relative tolerance on a campaign's value when it is held while the ΔV is minimised."""
+PATH_GAP_REL = 1e-4
+"""Relative tolerance of each enumerated path's schedule (undecided paths lie within it
+of their budget)."""
+
+
+def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: SolverOptions,
+                       deadline: float, say, stop) -> tuple[list, list, bool]:  # fmt: skip
+    """Every mission of every launch within its budget (columns), the undecided paths, and
+    whether the enumeration is complete (no limit stopped it).
+
+    Per (launch, debris set) only the cheapest is kept: the master needs no other.
+    """
+    columns: dict[tuple, Column] = {}
+    undecided: dict[tuple, Column] = {}
+    complete = True
+    for k, launch in enumerate(launches):
+        budget = float(campaign.dv_budget_mps[k])
+        for n in range(campaign.fewest(k), launch.mission.n + 1):
+            left = deadline - time.perf_counter()
+            if left <= 0 or stop():
+                return list(columns.values()), list(undecided.values()), False
+            sized = replace(launch, mission=launch.mission.replace(n=n))
+            pricing = price(sized, solver=solver, gap_rel=PATH_GAP_REL,
+                            path_tol_rel=PATH_GAP_REL, ceiling_mps=budget + OPTIMAL_GAP_MPS,
+                            time_limit_s=None if not np.isfinite(left) else left,
+                            stop=stop)  # fmt: skip
+            complete &= pricing.complete or pricing.status == "infeasible"
+            fits = 0
+            for column in pricing.columns:
+                key = (k, column.debris)
+                if column.dv_mps <= budget:
+                    fits += 1
+                    if key not in columns or column.dv_mps < columns[key].dv_mps:
+                        columns[key] = column
+                elif column.lower_mps <= budget and (
+                        key not in undecided or column.lower_mps < undecided[key].lower_mps):
+                    undecided[key] = column
+            say(f"  {launch.label()}, n = {n}: {fits} missions within {budget:g} m/s "
+                f"({len(pricing.columns)} paths certified)")  # fmt: skip
+    undecided = {key: c for key, c in undecided.items() if key not in columns}
+    return list(columns.values()), list(undecided.values()), complete
+
+
+def best_value(columns: list, values: np.ndarray, launches: int, debris: int, *,
+               solver: SolverOptions, costs=None):  # fmt: skip
+    """The most valuable campaign of ``columns``, then its least ΔV: (plan, value) or
+    (None, -inf) when no campaign can be made of them.  ``costs`` (default the columns'
+    ΔV) are what the second stage minimises."""
+    worth = np.array([values[list(c.debris)].sum() for c in columns])
+    most = solve_ip(columns, launches, debris, solver=solver, costs=-worth)
+    if most is None:
+        return None, -np.inf
+    value = -most.value
+    hold = value - VALUE_TOL * max(1.0, abs(value))
+    plan = solve_ip(columns, launches, debris, solver=solver, costs=costs,
+                    at_least=(worth, hold))  # fmt: skip
+    return plan, value
+
+
+def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
+                    deadline: float, say, stop):  # fmt: skip
+    """The most valuable campaign (see the module docstring).
+
+    Returns
+    -------
+    dict
+        ``plan`` (columns, launch order), ``launches``, ``value`` and ``value_bound``
+        (no campaign removes more), ``dv_mps`` and ``dv_bound_mps`` (no campaign of that
+        value costs less), ``status``, ``columns`` (missions found), ``notes``.
+
+    Raises
+    ------
+    MissionInfeasible
+        A launch has no mission within its budget, or no campaign removes each debris
+        once (proven: the enumeration was complete).
+    """
+    launches = Launch.all_of(campaign, catalog)
+    values = campaign.value_of(catalog.ids)
+    say(f"campaign: the most value, {len(launches)} launches, {len(catalog)} candidates; "
+        "every mission within its budget")  # fmt: skip
+    columns, undecided, complete = enumerate_missions(launches, campaign, solver=solver,
+                                                      deadline=deadline, say=say, stop=stop)
+    plan, value = best_value(columns, values, len(launches), len(catalog), solver=solver)
+    if plan is None:
+        if complete and not undecided:
+            empty = [launch.label() for launch in launches
+                     if not any(c.launch == launch.index for c in columns)]  # fmt: skip
+            why = (f"no mission of {', '.join(empty)} fits its ΔV budget" if empty else
+                   "the missions within budget cannot remove each debris once")  # fmt: skip
+            raise MissionInfeasible(f"proven: {why} (every path enumerated); raise "
+                                    "dv_budget_mps, lower n_min or lengthen tmax_days")
+        return dict(plan=None, launches=launches, notes=(
+            "the limit stopped the enumeration before a campaign was found",))
+    chosen = [columns[c] for c in plan.chosen]
+    dv = float(sum(c.dv_mps for c in chosen))
+    # the most any campaign could be worth, and the least that value could cost
+    everything = columns + undecided
+    lows = np.array([c.lower_mps for c in everything])
+    floor_plan, value_bound = best_value(everything, values, len(launches), len(catalog),
+                                         solver=solver, costs=lows)  # fmt: skip
+    dv_bound = floor_plan.value if value_bound <= value + VALUE_TOL * max(1.0, value) else 0.0
+    allowed = max(gap * dv, OPTIMAL_GAP_MPS * len(launches))
+    proven = complete and value_bound <= value + VALUE_TOL * max(1.0, value) \
+        and dv - dv_bound <= allowed * (1 + 1e-9)  # fmt: skip
+    notes = []
+    if not complete:
+        notes.append("a limit stopped the enumeration: missions within budget may be missing")
+    if undecided and value_bound > value:
+        notes.append(f"{len(undecided)} paths within the path tolerance of their budget "
+                     "are undecided: the value bound counts them")  # fmt: skip
+    status = RunStatus.OPTIMAL if proven else RunStatus.FEASIBLE
+    return dict(plan=chosen, launches=launches, value=value,
+                value_bound=value_bound if complete else None, dv_mps=dv,
+                dv_bound_mps=dv_bound if complete else None, status=status,
+                columns=len(columns), notes=tuple(notes))  # fmt: skip
+
+
+def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
+                   deadline: float, say, stop, clock: float) -> CampaignSolution:  # fmt: skip
+    """:func:`solve_max_value` as a :class:`CampaignSolution` (``solve_campaign``'s answer
+    for ``objective = "max-value"``; its pricing runs in this process)."""
+    found = solve_max_value(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
+                            say=say, stop=stop)  # fmt: skip
+    if found["plan"] is None:
+        from ..errors import SolverFailure
+
+        raise SolverFailure(f"{found['notes'][0]}: allow more time")
+    status = found["status"]
+    sized = [replace(launch, mission=launch.mission.replace(n=len(c.debris)))
+             for launch, c in ((found["launches"][c.launch], c) for c in found["plan"])]
+    missions = tuple(mission_solution(launch, c, status, solver.backend)
+                     for launch, c in zip(sized, found["plan"], strict=True))  # fmt: skip
+    value, bound = found["value"], found["value_bound"]
+    say(f"  most value {value:g} (no campaign removes more than "
+        f"{'unknown' if bound is None else f'{bound:g}'}), {found['dv_mps']:.2f} m/s")
+    return CampaignSolution(
+        campaign=campaign, catalog=catalog, missions=missions,
+        total_dv_mps=found["dv_mps"], lower_bound_mps=found["dv_bound_mps"], status=status,
+        greedy=GreedyCampaign(None, why="not computed for objective = 'max-value'"),
+        columns=found["columns"], pricings=sum(
+            campaign.missions[k].n - campaign.fewest(k) + 1 for k in range(len(campaign))),
+        seconds=time.perf_counter() - clock, notes=found["notes"], gap_requested=gap,
+        value=value, value_bound=bound)  # fmt: skip

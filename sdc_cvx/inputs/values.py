@@ -1,0 +1,76 @@
+"""The value of removing each debris, from a user's table (issue 27: removal programmes).
+
+A programme removes the debris that matter most: ``[catalog] values = "FILE.csv"`` gives
+each debris' value (a risk index, a ranking turned into a score, a mass...) as a CSV
+table with a header ``id,value``: ids as in the catalog (NORAD catalog numbers for
+TLE/OMM), values numbers >= 0.  Debris the file does not name are worth 0; ids the
+catalog does not hold are allowed (a ranking of the whole catalogue read beside a
+filtered one).  ``objective = "max-value"`` (:mod:`sdc_cvx.campaign.value`) uses them.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+from ..errors import CatalogError
+
+
+def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value")) -> dict[str, float]:
+    """``{id: value}`` from a CSV table with the ``columns`` (id, value), by default
+    ``id,value`` (``[catalog] values_columns`` names others: a published ranking's own
+    ``norad_id,listed_score``).
+
+    Raises
+    ------
+    CatalogError
+        The file cannot be read, has no ``id`` and ``value`` columns, or a row whose id
+        is blank or repeated or whose value is not a number >= 0 (every such row named,
+        with its line).
+    """
+    path = Path(path)
+    source = str(path)
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as err:
+        raise CatalogError(f"{source}: cannot read the values file: "
+                           f"{getattr(err, 'strerror', None) or err}") from None  # fmt: skip
+    rows = csv.reader(text.splitlines())
+    header = [name.strip().lower() for name in next(rows, [])]
+    id_name, value_name = (name.strip().lower() for name in columns)
+    if id_name not in header or value_name not in header:
+        raise CatalogError(f"{source}, header: a values file needs the columns "
+                           f"{id_name!r} and {value_name!r}, found "
+                           f"{', '.join(header) or 'no header'}")  # fmt: skip
+    at_id, at_value = header.index(id_name), header.index(value_name)
+    values: dict[str, float] = {}
+    seen: dict[str, int] = {}
+    problems = []
+    for line, row in enumerate(rows, start=2):
+        if not any(cell.strip() for cell in row):
+            continue
+        where = f"{source}, line {line}"
+        if len(row) <= max(at_id, at_value):
+            problems.append(f"{where}: {len(row)} fields, expected {len(header)}")
+            continue
+        ident, text_value = row[at_id].strip(), row[at_value].strip()
+        if not ident:
+            problems.append(f"{where}, field {id_name}: blank")
+            continue
+        if ident in seen:
+            problems.append(f"{where}, field {id_name}: {ident!r} repeats line {seen[ident]}")
+            continue
+        try:
+            value = float(text_value)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and value >= 0):
+            problems.append(f"{where}, field {value_name}: expected a number >= 0, got "
+                            f"{text_value!r}")
+            continue
+        seen[ident] = line
+        values[ident] = value
+    if problems:
+        raise CatalogError.collect(source, problems)
+    return values

@@ -1,0 +1,137 @@
+"""The most valuable campaign (issue 27: ``objective = "max-value"``) against a brute force.
+
+The brute force (``tests/campaign/bruteforce.py``: ``value_optimum``) enumerates, for
+each launch, every debris set of every size in the launch's range with the best order
+the mission brute force finds (a grid over the drift orbits, RAANs carried by Eq. 7
+re-derived there), keeps those within the launch's ΔV budget, and every choice of one
+set per launch with no debris twice: the most value, then the least ΔV.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from sdc_cvx import Mission, MissionInfeasible
+from sdc_cvx.campaign.search import solve_campaign
+from sdc_cvx.inputs.campaign import Campaign
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.solution import RunStatus
+from tests.campaign.bruteforce import advanced, value_optimum
+from tests.planner.test_enumeration import solver_plan_checked
+
+GRID_TOL_MPS = 0.05  # the mission brute force's grid error per mission
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    size: int
+    seed: int
+    launch_days: tuple
+    ranges: tuple
+    tmax: tuple
+    budgets: tuple
+    rule: str = "table3"
+
+    def catalog(self):
+        return sso_catalog(self.size, seed=self.seed, inclination_spread_deg=0.8)
+
+    def values(self) -> dict:
+        rng = np.random.default_rng(self.seed)
+        return {k: float(rng.integers(1, 10)) for k in self.catalog().ids}
+
+    def campaign(self) -> Campaign:
+        return Campaign.of(self.launch_days, Mission(drift_inclination=self.rule),
+                           n=[list(r) for r in self.ranges], tmax_days=list(self.tmax),
+                           objective="max-value", dv_budget_mps=list(self.budgets),
+                           values=self.values())  # fmt: skip
+
+
+CASES = [
+    pytest.param(Case("ranges-2-3", 8, 7, (0.0, 365.25), ((2, 3), (2, 3)), (200.0, 200.0),
+                      (300.0, 250.0)), id="ranges-2-3"),
+    pytest.param(Case("budget-binds-free", 8, 11, (0.0, 200.0), ((2, 3), (2, 2)),
+                      (250.0, 150.0), (260.0, 200.0), rule="free"), id="budget-binds-free"),
+    pytest.param(Case("a-mission-of-three", 8, 23, (0.0, 365.25), ((2, 3), (2, 3)),
+                      (300.0, 300.0), (400.0, 250.0)), id="a-mission-of-three",
+                 marks=pytest.mark.slow),
+    pytest.param(Case("two-of-three", 8, 23, (0.0, 365.25), ((2, 3), (2, 3)),
+                      (300.0, 300.0), (550.0, 300.0)), id="two-of-three",
+                 marks=pytest.mark.slow),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_most_valuable_campaign_is_the_brute_forces(case):
+    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                         case.budgets, case.values(), case.rule)  # fmt: skip
+    assert np.isfinite(best.value) and best.margin_mps > 2 * GRID_TOL_MPS  # not on the edge
+    sol = solve_campaign(case.catalog(), case.campaign(), workers=1)
+    found = f"solver {[m.path for m in sol.missions]}; brute {[sorted(s) for s in best.sets]}"
+    assert sol.status == RunStatus.OPTIMAL and sol.certified, found
+    assert sol.value == pytest.approx(best.value) and sol.value_bound == pytest.approx(best.value)
+    assert sol.total_dv_mps <= best.dv_mps * (1 + 1e-3) + 1e-6, found
+    assert sol.total_dv_mps >= best.dv_mps - len(case.ranges) * GRID_TOL_MPS, found
+    assert sol.lower_bound_mps <= best.dv_mps + 1e-6
+    removed = [d for m in sol.missions for d in m.path]
+    assert len(removed) == len(set(removed))
+    for day, (low, high), tmax, budget, mission in zip(
+            case.launch_days, case.ranges, case.tmax, case.budgets, sol.missions, strict=True):
+        assert low <= len(mission.path) <= high and mission.total_dv_mps <= budget + 1e-9
+        solver_plan_checked(mission, advanced(case.catalog(), day), tmax, case.rule)
+
+
+def test_a_budget_no_mission_fits_is_proven_infeasible():
+    catalog = sso_catalog(8, seed=7, inclination_spread_deg=0.8)
+    campaign = Campaign.of([0.0, 365.25], Mission(n=2, tmax_days=200.0), objective="max-value",
+                           dv_budget_mps=1.0)  # fmt: skip
+    with pytest.raises(MissionInfeasible, match="fits its ΔV budget"):
+        solve_campaign(catalog, campaign, workers=1)
+
+
+def test_max_value_options_are_checked():
+    from sdc_cvx import MissionError
+
+    with pytest.raises(MissionError, match="dv_budget_mps"):
+        Campaign.of([0.0], Mission(n=3), objective="max-value")
+    with pytest.raises(MissionError, match="n ranges"):
+        Campaign.of([0.0], Mission(n=3), n=[[4, 3]], objective="max-value", dv_budget_mps=100)
+    with pytest.raises(MissionError, match="objective must be one of"):
+        Campaign.of([0.0], Mission(n=3), objective="max-dv")
+    with pytest.raises(MissionError, match="for objective = 'max-value'"):
+        Campaign.of([0.0], Mission(n=3), dv_budget_mps=100)
+
+
+def test_a_max_value_scenario_runs_from_the_command_line(tmp_path):
+    """[catalog] values (a ranking with its own column names) and [campaign] objective,
+    n ranges and dv_budget_mps, through a real subprocess: campaign.json says the value,
+    its bound and the objective; the scenario written back reads the same."""
+    import json
+    import subprocess
+    import sys
+
+    from sdc_cvx.study.scenario import Scenario
+    from tests.conftest import REPO
+
+    (tmp_path / "ranking.csv").write_text("rank,norad,score\n1,5,10\n2,8,7\n3,2,6\n4,6,1\n")
+    (tmp_path / "value.toml").write_text(
+        '[catalog]\nvalues = "ranking.csv"\nvalues_columns = ["norad", "score"]\n'
+        "[mission]\ntmax_days = 365.25\n"
+        '[campaign]\nobjective = "max-value"\nlaunch_days = [0.0, 365.25]\n'
+        "n = [[2, 3], [2, 2]]\ndv_budget_mps = 150.0\n")  # fmt: skip
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "campaign",
+                           str(tmp_path / "value.toml"), "--out", str(tmp_path / "out")],
+                          capture_output=True, text=True, cwd=REPO, timeout=300)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    summary = json.loads((tmp_path / "out" / "campaign.json").read_text())
+    assert summary["objective"] == "max-value" and summary["status"] == "optimal"
+    assert summary["value"] == summary["value_bound"] > 0
+    assert all(m["total_dv_mps"] <= 150.0 and 2 <= len(m["path"]) <= 3
+               for m in summary["missions"])  # fmt: skip
+    again = Scenario.load(tmp_path / "value.toml")
+    written = tmp_path / "again.toml"
+    written.write_text(again.to_toml())
+    assert Scenario.load(written).campaign == again.campaign
