@@ -1,0 +1,35 @@
+"""The values file of a removal programme (issue 27): what it reads and what it refuses."""
+
+import pytest
+
+from sdc_cvx.errors import CatalogError
+from sdc_cvx.inputs.values import read_values
+
+
+def test_a_ranking_is_read_by_its_own_column_names(tmp_path):
+    path = tmp_path / "top.csv"
+    path.write_text("\ufeffrank,norad_id,listed_score\n1,22566,4048\n2,22220,3710\n\n")
+    assert read_values(path, ("norad_id", "listed_score")) == {"22566": 4048.0, "22220": 3710.0}
+
+
+def test_every_bad_row_is_named_with_its_line_and_field(tmp_path):
+    path = tmp_path / "values.csv"
+    path.write_text("id,value\n1,2.5\n,3\n1,4\n2,-1\n3,many\n4\n")
+    with pytest.raises(CatalogError) as caught:
+        read_values(path)
+    message = str(caught.value)
+    assert "5 problems" in message
+    for said in ("line 3, field id: blank", "line 4, field id: '1' repeats line 2",
+                 "line 5, field value: expected a number >= 0, got '-1'",
+                 "line 6, field value: expected a number >= 0, got 'many'",
+                 "line 7: 1 fields, expected 2"):  # fmt: skip
+        assert said in message
+
+
+def test_a_file_without_the_columns_says_which_it_has(tmp_path):
+    path = tmp_path / "values.csv"
+    path.write_text("norad,score\n1,2\n")
+    with pytest.raises(CatalogError, match="needs the columns 'id' and 'value', found norad, score"):
+        read_values(path)
+    with pytest.raises(CatalogError, match="cannot read the values file"):
+        read_values(tmp_path / "missing.csv")
