@@ -69,6 +69,10 @@ class CampaignSolution:
         ``objective = "max-value"``: the value the campaign removes, and the most any
         campaign could (None: not proven); ``lower_bound_mps`` then bounds the ΔV of the
         campaigns of that value.
+    pareto : tuple of dict
+        ``--pareto K``: campaigns of value against ΔV (``target_value``, ``value``,
+        ``dv_mps``, ``dv_bound_mps``, ``missions``), each the cheapest of at least its
+        target (``pareto.csv``, ``pareto.png``).
     """
 
     campaign: Campaign
@@ -86,6 +90,7 @@ class CampaignSolution:
     gap_requested: float = 1e-3
     value: float | None = None
     value_bound: float | None = None
+    pareto: tuple[dict, ...] = ()
 
     @property
     def certified(self) -> bool:
@@ -179,6 +184,11 @@ class CampaignSolution:
                 "tmax_days": mission.mission.tmax_days, "folder": mission_folder(k),
             })  # fmt: skip
         return pd.DataFrame(rows)
+
+    def pareto_frame(self) -> pd.DataFrame:
+        """``pareto.csv``: the campaigns of value against ΔV, one row each."""
+        return pd.DataFrame([row | {"missions": " | ".join("->".join(m) for m in row["missions"])}
+                             for row in self.pareto])  # fmt: skip
 
     def history_frame(self) -> pd.DataFrame:
         """The bound and the plan against elapsed time, one row per step."""

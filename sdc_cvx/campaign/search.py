@@ -346,7 +346,8 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
                    gap: float = DEFAULT_GAP_REL, time_limit_s: float | None = None,
                    workers: int | None = None, scheduler=None, executor=None,
                    log: Callable[[str], None] | None = None,
-                   stop: Callable[[], bool] | None = None) -> CampaignSolution:  # fmt: skip
+                   stop: Callable[[], bool] | None = None,
+                   pareto: int = 0) -> CampaignSolution:  # fmt: skip
     """The cheapest campaign of ``campaign``'s missions over ``catalog``, with its bound.
 
     Parameters
@@ -377,6 +378,9 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         Asked between steps (and by a pricing run in this process, between its own):
         True ends the search with the best campaign so far and its gap, status
         ``feasible`` (the command line's Ctrl-C).
+    pareto : int
+        ``objective = "max-value"``: also this many campaigns of value against ΔV
+        (``CampaignSolution.pareto``; 0: none).
 
     Returns
     -------
@@ -407,11 +411,17 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)
+    if not isinstance(pareto, int) or isinstance(pareto, bool) or pareto < 0:
+        raise MissionError(f"pareto must be a number of campaigns >= 0, got {pareto!r}")
     if campaign.objective == "max-value":
         from .value import value_campaign
 
         return value_campaign(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
-                              say=say, stop=stop or (lambda: False), clock=clock)  # fmt: skip
+                              say=say, stop=stop or (lambda: False), clock=clock,
+                              pareto=pareto)  # fmt: skip
+    if pareto:
+        raise MissionError("pareto: value against ΔV needs objective = 'max-value' (with "
+                           "each mission's dv_budget_mps)")  # fmt: skip
     launches = len(campaign)
     inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
     with PricingRuns(inline, executor, scheduler, workers, launches, stop, say) as run:

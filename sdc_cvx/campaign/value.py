@@ -160,15 +160,62 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
     return dict(plan=chosen, launches=launches, value=value,
                 value_bound=value_bound if complete else None, dv_mps=dv,
                 dv_bound_mps=dv_bound if complete else None, status=status,
-                columns=len(columns), notes=tuple(notes))  # fmt: skip
+                columns=len(columns), notes=tuple(notes), pool=(columns, undecided, values),
+                complete=complete)  # fmt: skip
+
+
+def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: int,
+                 debris: int, points: int, *,
+                 solver: SolverOptions) -> tuple[dict, ...]:  # fmt: skip
+    """Campaigns of value against ΔV, each the cheapest of at least a target value.
+
+    The targets run evenly from the value of the cheapest campaign to the most value
+    (``points`` of them; a campaign met twice is kept once).  Each point's ``dv_bound_mps``
+    is the same program over every path at its bound: no campaign of at least that value
+    costs less (the ε-constraint method: every point is on the front, within the bound).
+    """
+    everything = columns + undecided
+    worth = np.array([values[list(c.debris)].sum() for c in columns])
+    worth_all = np.array([values[list(c.debris)].sum() for c in everything])
+    lows = np.array([c.lower_mps for c in everything])
+    cheapest = solve_ip(columns, launches, debris, solver=solver)
+    _, most = best_value(columns, values, launches, debris, solver=solver)
+    if cheapest is None:
+        return ()
+    least = float(worth[list(cheapest.chosen)].sum())
+    rows, seen = [], set()
+    for target in np.linspace(least, most, max(points, 2)):
+        hold = target - VALUE_TOL * max(1.0, abs(target))
+        plan = solve_ip(columns, launches, debris, solver=solver, at_least=(worth, hold))
+        floor = solve_ip(everything, launches, debris, solver=solver, costs=lows,
+                         at_least=(worth_all, hold))  # fmt: skip
+        if plan is None or plan.chosen in seen:
+            continue
+        seen.add(plan.chosen)
+        rows.append(dict(target_value=float(target), value=float(worth[list(plan.chosen)].sum()),
+                         dv_mps=plan.value, dv_bound_mps=None if floor is None else floor.value,
+                         missions=[columns[c].nodes for c in plan.chosen]))  # fmt: skip
+    return tuple(rows)
 
 
 def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
-                   deadline: float, say, stop, clock: float) -> CampaignSolution:  # fmt: skip
+                   deadline: float, say, stop, clock: float,
+                   pareto: int = 0) -> CampaignSolution:  # fmt: skip
     """:func:`solve_max_value` as a :class:`CampaignSolution` (``solve_campaign``'s answer
-    for ``objective = "max-value"``; its pricing runs in this process)."""
+    for ``objective = "max-value"``; its pricing runs in this process), with ``pareto``
+    points of :func:`pareto_front` (none: 0)."""
     found = solve_max_value(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
                             say=say, stop=stop)  # fmt: skip
+    front = ()
+    if pareto and found["plan"] is not None:
+        columns, undecided, values = found["pool"]
+        front = pareto_front(columns, undecided, values, len(campaign), len(catalog), pareto,
+                             solver=solver)  # fmt: skip
+        catalog_ids = catalog.ids
+        front = tuple(row | {"missions": [[catalog_ids[i] for i in path if i < len(catalog_ids)]
+                                          for path in row["missions"]]}
+                      for row in front)  # fmt: skip
+        say(f"  value against ΔV: {len(front)} campaigns of the front")
     if found["plan"] is None:
         from ..errors import SolverFailure
 
@@ -188,4 +235,4 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         columns=found["columns"], pricings=sum(
             campaign.missions[k].n - campaign.fewest(k) + 1 for k in range(len(campaign))),
         seconds=time.perf_counter() - clock, notes=found["notes"], gap_requested=gap,
-        value=value, value_bound=bound)  # fmt: skip
+        value=value, value_bound=bound, pareto=front)  # fmt: skip

@@ -58,9 +58,12 @@ from .reading import (
 @click.option("--json", "json_out", is_flag=True,
               help="Write campaign.json to stdout (and nothing else there).")  # fmt: skip
 @click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
+@click.option("--pareto", type=click.IntRange(min=2), default=None, metavar="K",
+              help="With objective = 'max-value': also K campaigns of value against ΔV, each "
+              "the cheapest of at least a value (pareto.csv, pareto.png).")  # fmt: skip
 @click.option("--progress/--no-progress", default=None, hidden=True)
 def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, scheduler, raan_rates,
-                     quiet, json_out, svg, progress):  # fmt: skip
+                     quiet, json_out, svg, pareto, progress):  # fmt: skip
     """Plan a removal campaign: K missions on given launch days, each debris removed once.
 
     SCENARIO.toml has a [campaign] table (launch_days, or missions with first_launch_day
@@ -103,6 +106,9 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     elif (problem := new_folder_problem()) is not None:
         fail(problem)
     campaign = scenario.campaign
+    if pareto and campaign.objective != "max-value":
+        fail(f"--pareto: value against ΔV needs [campaign] objective = 'max-value' (with "
+             f"dv_budget_mps) in {scenario_file}")  # fmt: skip
     gap = scenario.solver.gap if gap is None else gap
     time_limit_s = scenario.solver.time_limit_s if time_limit_s is None else time_limit_s
     catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first
@@ -152,7 +158,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
                 solution = solve_campaign(catalog, campaign, solver=scenario.solver, gap=gap,
                                           time_limit_s=time_limit_s, workers=workers,
                                           scheduler=scheduler, log=steps.search_step,
-                                          stop=stop)  # fmt: skip
+                                          stop=stop, pareto=pareto or 0)  # fmt: skip
         except MissionInfeasible as err:
             steps.say(f"infeasible: {err}")
             try:

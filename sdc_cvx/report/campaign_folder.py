@@ -10,6 +10,7 @@ A campaign folder::
     campaign.log       the progress of the search (if given)
     scenario.toml      the scenario as used (if given)
     timeline.png, raan.png, dv.png, bound.png   the figures
+    pareto.csv, pareto.png   with --pareto: campaigns of value against ΔV
     mission_01/ ...    one run folder per mission: its solution.json has the mission's
                        own start date (the campaign's plus its launch day) and its legs
                        from it; its run.log points to the campaign's log, its figures
@@ -34,7 +35,7 @@ from .run_folder import CSV_FLOAT_FORMAT, _write_files, write_staged
 
 CAMPAIGN_FOLDER_MARKERS = ("campaign.json", "campaign.log", "missions.csv")
 """A folder holding one of these is an earlier campaign folder, which is replaced."""
-CAMPAIGN_FIGURE_NAMES = ("timeline", "raan", "dv", "bound")
+CAMPAIGN_FIGURE_NAMES = ("timeline", "raan", "dv", "bound", "pareto")
 """The campaign's figures (:mod:`sdc_cvx.report.campaign_plots` draws them)."""
 KIND = "campaign folder"
 
@@ -46,7 +47,8 @@ class _CampaignFiles:
     mission folder it does not list) is refused rather than replaced."""
 
     names = frozenset(
-        {"campaign.json", "campaign.log", "missions.csv", "history.csv", "scenario.toml"}
+        {"campaign.json", "campaign.log", "missions.csv", "history.csv", "scenario.toml",
+         "pareto.csv"}
         | {f"{name}.{ext}" for name in CAMPAIGN_FIGURE_NAMES for ext in ("png", "svg", "pdf")}
     )
 
@@ -143,7 +145,9 @@ def write_campaign(folder, solution, *, formats=("png",), scenario_toml: str | N
                 index=False, float_format=CSV_FLOAT_FORMAT),
             "history.csv": solution.history_frame().to_csv(
                 index=False, float_format=CSV_FLOAT_FORMAT),
-        }, scenario_toml, log)  # fmt: skip
+        } | ({"pareto.csv": solution.pareto_frame().to_csv(
+                index=False, float_format=CSV_FLOAT_FORMAT)} if solution.pareto else {}),
+            scenario_toml, log)  # fmt: skip
         if formats:
             from .campaign_plots import save_campaign_figures  # matplotlib when drawn
 

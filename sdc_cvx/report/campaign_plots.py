@@ -220,10 +220,37 @@ def plot_bound(solution) -> Figure:
     return fig
 
 
+def plot_pareto(solution) -> Figure:
+    """Value removed against campaign ΔV: the campaigns of ``--pareto``, each the cheapest
+    of at least its target value, with the bound below it (no campaign of that value
+    costs less); the campaign chosen (the most value) circled."""
+    fig, ax = _figure()
+    rows = sorted(solution.pareto, key=lambda row: row["value"])
+    value = np.array([row["value"] for row in rows])
+    dv = np.array([row["dv_mps"] for row in rows])
+    bound = np.array([np.nan if row["dv_bound_mps"] is None else row["dv_bound_mps"]
+                      for row in rows])  # fmt: skip
+    ax.step(dv, value, where="post", color="#888888", linewidth=1)
+    ax.plot(dv, value, "o", color=_color(0), label="campaign: the least ΔV of its value")
+    ax.plot(bound, value, "|", color="#444444", markersize=10,
+            label="bound: no campaign of that value costs less")  # fmt: skip
+    ax.plot([solution.total_dv_mps], [solution.value], "o", markersize=14, markerfacecolor="none",
+            markeredgecolor="#d62728", label="chosen: the most value")  # fmt: skip
+    ax.set_xlabel("campaign ΔV [m/s]")
+    ax.set_ylabel("value removed")
+    ax.set_title(f"Value against ΔV: {len(rows)} campaigns, each mission within its budget")
+    ax.legend(fontsize=8, loc="lower right")
+    ax.grid(alpha=0.3)
+    return fig
+
+
 def campaign_figures(solution) -> dict[str, Figure]:
-    """The four figures by name (``CAMPAIGN_FIGURE_NAMES`` of
-    :mod:`~sdc_cvx.report.campaign_folder`, which lists them without matplotlib)."""
+    """The figures by name (``CAMPAIGN_FIGURE_NAMES`` of
+    :mod:`~sdc_cvx.report.campaign_folder`, which lists them without matplotlib; ``pareto``
+    only with a front)."""
     draw = {"timeline": plot_timeline, "raan": plot_raan, "dv": plot_dv, "bound": plot_bound}
+    if getattr(solution, "pareto", ()):
+        draw["pareto"] = plot_pareto
     return {name: plot(solution) for name, plot in draw.items()}
 
 

@@ -103,11 +103,9 @@ class ValueOptimum:
     margin_mps: float  # how near a set's dv comes to its launch's budget (grid error)
 
 
-def value_optimum(catalog: Catalog, launch_days, ranges, tmaxes, budgets, values: dict,
-                  rule="table3") -> ValueOptimum:  # fmt: skip
-    """The most valuable campaign: one set per launch of between n_min and n_max debris,
-    each flown within its launch's budget (total ΔV), no debris twice; among those of
-    the most value, the least ΔV (every choice enumerated)."""
+def value_options(catalog: Catalog, launch_days, ranges, tmaxes, budgets, rule="table3"):
+    """Per launch, every debris set of its range flown within its budget (sorted by dv),
+    and how near any set's dv comes to its launch's budget (the grid error's margin)."""
     options, margin = [], np.inf
     for day, (low, high), tmax, budget in zip(launch_days, ranges, tmaxes, budgets,
                                               strict=True):  # fmt: skip
@@ -118,13 +116,27 @@ def value_optimum(catalog: Catalog, launch_days, ranges, tmaxes, budgets, values
                 if dv <= budget:
                     sets[key] = dv
         options.append(sorted(sets.items(), key=lambda kv: kv[1]))
-    best = (-np.inf, np.inf, ())
+    return options, float(margin)
+
+
+def campaigns_of(options, values: dict):
+    """Every choice of one set per launch with no debris twice: (value, dv, sets)."""
     for choice in itertools.product(*options):
         chosen = [c[0] for c in choice]
         if len(frozenset().union(*chosen)) != sum(len(c) for c in chosen):
             continue
         worth = sum(values.get(d, 0.0) for c in chosen for d in c)
-        total = sum(c[1] for c in choice)
+        yield worth, sum(c[1] for c in choice), tuple(chosen)
+
+
+def value_optimum(catalog: Catalog, launch_days, ranges, tmaxes, budgets, values: dict,
+                  rule="table3") -> ValueOptimum:  # fmt: skip
+    """The most valuable campaign: one set per launch of between n_min and n_max debris,
+    each flown within its launch's budget (total ΔV), no debris twice; among those of
+    the most value, the least ΔV (every choice enumerated)."""
+    options, margin = value_options(catalog, launch_days, ranges, tmaxes, budgets, rule)
+    best = (-np.inf, np.inf, ())
+    for worth, total, chosen in campaigns_of(options, values):
         if worth > best[0] + 1e-9 or (abs(worth - best[0]) <= 1e-9 and total < best[1]):
-            best = (worth, total, tuple(chosen))
-    return ValueOptimum(float(best[0]), float(best[1]), best[2], float(margin))
+            best = (worth, total, chosen)
+    return ValueOptimum(float(best[0]), float(best[1]), best[2], margin)

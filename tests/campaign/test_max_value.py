@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from sdc_cvx import Mission, MissionInfeasible
+from sdc_cvx import Mission, MissionError, MissionInfeasible
 from sdc_cvx.campaign.search import solve_campaign
 from sdc_cvx.inputs.campaign import Campaign
 from sdc_cvx.inputs.synthetic import sso_catalog
@@ -56,11 +56,9 @@ CASES = [
     pytest.param(Case("budget-binds-free", 8, 11, (0.0, 200.0), ((2, 3), (2, 2)),
                       (250.0, 150.0), (260.0, 200.0), rule="free"), id="budget-binds-free"),
     pytest.param(Case("a-mission-of-three", 8, 23, (0.0, 365.25), ((2, 3), (2, 3)),
-                      (300.0, 300.0), (400.0, 250.0)), id="a-mission-of-three",
-                 marks=pytest.mark.slow),
+                      (300.0, 300.0), (400.0, 250.0)), id="a-mission-of-three"),
     pytest.param(Case("two-of-three", 8, 23, (0.0, 365.25), ((2, 3), (2, 3)),
-                      (300.0, 300.0), (550.0, 300.0)), id="two-of-three",
-                 marks=pytest.mark.slow),
+                      (300.0, 300.0), (550.0, 300.0)), id="two-of-three"),
 ]  # fmt: skip
 
 
@@ -123,7 +121,8 @@ def test_a_max_value_scenario_runs_from_the_command_line(tmp_path):
         '[campaign]\nobjective = "max-value"\nlaunch_days = [0.0, 365.25]\n'
         "n = [[2, 3], [2, 2]]\ndv_budget_mps = 150.0\n")  # fmt: skip
     done = subprocess.run([sys.executable, "-m", "sdc_cvx", "campaign",
-                           str(tmp_path / "value.toml"), "--out", str(tmp_path / "out")],
+                           str(tmp_path / "value.toml"), "--pareto", "4",
+                           "--out", str(tmp_path / "out")],
                           capture_output=True, text=True, cwd=REPO, timeout=300)  # fmt: skip
     assert done.returncode == 0, done.stderr
     summary = json.loads((tmp_path / "out" / "campaign.json").read_text())
@@ -131,7 +130,34 @@ def test_a_max_value_scenario_runs_from_the_command_line(tmp_path):
     assert summary["value"] == summary["value_bound"] > 0
     assert all(m["total_dv_mps"] <= 150.0 and 2 <= len(m["path"]) <= 3
                for m in summary["missions"])  # fmt: skip
+    assert (tmp_path / "out" / "pareto.png").is_file()
+    front = (tmp_path / "out" / "pareto.csv").read_text().splitlines()
+    assert front[0] == "target_value,value,dv_mps,dv_bound_mps,missions" and len(front) >= 2
     again = Scenario.load(tmp_path / "value.toml")
     written = tmp_path / "again.toml"
     written.write_text(again.to_toml())
     assert Scenario.load(written).campaign == again.campaign
+
+
+def test_the_campaigns_of_value_against_dv_are_the_brute_forces_front():
+    """``pareto``: each campaign is the cheapest of at least its target value (the brute
+    force's, to its grid), none dominates another, and the last is the most valuable."""
+    from tests.campaign.bruteforce import campaigns_of, value_options
+
+    case = CASES[-1].values[0]  # two-of-three: five campaigns from 84 to 577 m/s
+    options, margin = value_options(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                                    case.budgets, case.rule)  # fmt: skip
+    assert margin > 2 * GRID_TOL_MPS
+    every = list(campaigns_of(options, case.values()))
+    sol = solve_campaign(case.catalog(), case.campaign(), workers=1, pareto=5)
+    front = sorted(sol.pareto, key=lambda row: row["value"])
+    assert len(front) >= 3
+    for row in front:
+        cheapest = min(dv for worth, dv, _ in every if worth >= row["target_value"] - 1e-9)
+        assert row["dv_mps"] == pytest.approx(cheapest, abs=len(case.ranges) * GRID_TOL_MPS)
+        assert row["dv_bound_mps"] <= cheapest + 1e-6 and row["value"] >= row["target_value"]
+    values, costs = [r["value"] for r in front], [r["dv_mps"] for r in front]
+    assert values == sorted(values) and costs == sorted(costs)  # more value costs more
+    assert front[-1]["value"] == pytest.approx(sol.value)
+    with pytest.raises(MissionError, match="needs objective = 'max-value'"):
+        solve_campaign(case.catalog(), Campaign.of([0.0], Mission(n=2)), pareto=3)
