@@ -180,3 +180,30 @@ def test_cheapest_path_within_upper_only():
     assert path_bounds.cheapest_path(arcs, 2, node_debris, cheapest - 1e-3).cost == np.inf
     assert path_bounds.cheapest_path(arcs, 2, node_debris, cheapest + 1e-3).cost == \
         pytest.approx(cheapest)  # fmt: skip
+
+
+@pytest.mark.parametrize("seed", range(8))
+@pytest.mark.parametrize("legs", [2, 3])
+def test_labels_and_the_relaxation_milp_agree_on_negative_costs(seed, legs):
+    """A campaign's prizes make node costs negative, folded into the arcs: the labels'
+    cheapest path and the relaxation MILP (the two ways the certified search solves its
+    relaxation) are both the cheapest path enumerated (issue 27, part 5)."""
+    from sdc_cvx.milp.types import SolverOptions
+    from sdc_cvx.planner.certified.relaxation import Arcs, solve_relaxation
+
+    arcs, node_debris = random_network(seed)
+    cost = np.random.default_rng(100 + seed).uniform(-6.0, 10.0, len(arcs.cost))
+    arcs = NetworkArcs(arcs.tail, arcs.head, arcs.debris_from, arcs.debris_to, cost,
+                       arcs.n_nodes, arcs.start_allowed)  # fmt: skip
+    assert (cost < 0).any()
+    _, cheapest = enumerate_through(arcs, legs, node_debris, elementary=True)
+    assert np.isfinite(cheapest)
+    labels = path_bounds.cheapest_path(arcs, legs, node_debris, 1e9)
+    assert labels.cost == pytest.approx(cheapest)
+    n_debris = len(arcs.start_allowed)
+    usable = (arcs.tail >= n_debris) | arcs.start_allowed[np.minimum(arcs.tail, n_debris - 1)]
+    milp = solve_relaxation(Arcs(arcs.tail, arcs.head, arcs.debris_from, arcs.debris_to,
+                                 cost).take(usable), n_nodes=arcs.n_nodes, n_debris=n_debris,
+                            legs=legs, solver=SolverOptions(), solver_gap=0.0)  # fmt: skip
+    assert milp.lower_mps == pytest.approx(cheapest, abs=1e-6)
+    assert sum(cost[a] for a in labels.rows) == pytest.approx(cheapest)
