@@ -156,15 +156,18 @@ class _Campaign:
         self.say(f"  {step}: plan {plan}, {bound}, {len(self.pool)} columns, "
                  f"{self.pricings} pricings")  # fmt: skip
 
-    def price_all(self, tasks) -> list[Pricing]:
+    def price_all(self, tasks, *, wait_counts: bool = True) -> list[Pricing]:
         """Run the pricing ``tasks`` (launch, keyword arguments) where they run, each with
-        the schedules the pool knows of its launch's paths."""
+        the schedules the pool knows of its launch's paths.  A task that waits for a
+        worker has that much less time (``wait_counts``), except in the launches alone:
+        without each launch's plan there is no campaign to return."""
         left = self.remaining()
         known: dict[int, dict] = {}
         for column in self.pool.columns:
             known.setdefault(column.launch, {})[column.nodes] = column.schedule
         out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left,
-                                      sent_at=time.time(), known=known.get(launch.index),
+                                      sent_at=time.time() if wait_counts else None,
+                                      known=known.get(launch.index),
                                       path_tol_rel=self.gap_rel / 2))
                         for launch, kwargs in tasks])  # fmt: skip
         self.pricings += len(out)
@@ -189,7 +192,8 @@ class _Campaign:
         """Step 1: each launch priced alone; infeasible launches end the campaign."""
         self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
                  "each launch alone")  # fmt: skip
-        alone = self.price_all([(launch, self.unpriced()) for launch in self.launches])
+        alone = self.price_all([(launch, self.unpriced()) for launch in self.launches],
+                               wait_counts=False)  # fmt: skip
         self.alone_bounds = [result.lower_mps for result in alone]
         for launch, result in zip(self.launches, alone, strict=True):
             self.pool.add(result.columns)

@@ -29,7 +29,7 @@ def test_every_bad_row_is_named_with_its_line_and_field(tmp_path):
 def test_a_file_without_the_columns_says_which_it_has(tmp_path):
     path = tmp_path / "values.csv"
     path.write_text("norad,score\n1,2\n")
-    with pytest.raises(CatalogError, match="needs the columns 'id' and 'value', found norad, score"):
+    with pytest.raises(CatalogError, match="the columns 'id' and 'value', found norad, score"):
         read_values(path)
     with pytest.raises(CatalogError, match="cannot read the values file"):
         read_values(tmp_path / "missing.csv")
