@@ -61,30 +61,32 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     columns: dict[tuple, Column] = {}
     undecided: dict[tuple, Column] = {}
     complete = True
-    for k, launch in enumerate(launches):
-        budget = float(campaign.dv_budget_mps[k])
-        for n in range(campaign.fewest(k), launch.mission.n + 1):
-            left = deadline - time.perf_counter()
-            if left <= 0 or stop():
-                return list(columns.values()), list(undecided.values()), False
-            sized = replace(launch, mission=launch.mission.replace(n=n))
-            pricing = price(sized, solver=solver, gap_rel=PATH_GAP_REL,
-                            path_tol_rel=PATH_GAP_REL, ceiling_mps=budget + OPTIMAL_GAP_MPS,
-                            time_limit_s=None if not np.isfinite(left) else left,
-                            stop=stop)  # fmt: skip
-            complete &= pricing.complete or pricing.status == "infeasible"
-            fits = 0
-            for column in pricing.columns:
-                key = (k, column.debris)
-                if column.dv_mps <= budget:
-                    fits += 1
-                    if key not in columns or column.dv_mps < columns[key].dv_mps:
-                        columns[key] = column
-                elif column.lower_mps <= budget and (
-                        key not in undecided or column.lower_mps < undecided[key].lower_mps):
-                    undecided[key] = column
-            say(f"  {launch.label()}, n = {n}: {fits} missions within {budget:g} m/s "
-                f"({len(pricing.columns)} paths certified)")  # fmt: skip
+    # the fewest debris of every launch first: a limit then leaves a campaign to return
+    steps = sorted(((n - campaign.fewest(k), k, n) for k, launch in enumerate(launches)
+                    for n in range(campaign.fewest(k), launch.mission.n + 1)))  # fmt: skip
+    for _, k, n in steps:
+        launch, budget = launches[k], float(campaign.dv_budget_mps[k])
+        left = deadline - time.perf_counter()
+        if left <= 0 or stop():
+            return list(columns.values()), list(undecided.values()), False
+        sized = replace(launch, mission=launch.mission.replace(n=n))
+        pricing = price(sized, solver=solver, gap_rel=PATH_GAP_REL,
+                        path_tol_rel=PATH_GAP_REL, ceiling_mps=budget + OPTIMAL_GAP_MPS,
+                        time_limit_s=None if not np.isfinite(left) else left,
+                        stop=stop)  # fmt: skip
+        complete &= pricing.complete or pricing.status == "infeasible"
+        fits = 0
+        for column in pricing.columns:
+            key = (k, column.debris)
+            if column.dv_mps <= budget:
+                fits += 1
+                if key not in columns or column.dv_mps < columns[key].dv_mps:
+                    columns[key] = column
+            elif column.lower_mps <= budget and (
+                    key not in undecided or column.lower_mps < undecided[key].lower_mps):
+                undecided[key] = column
+        say(f"  {launch.label()}, n = {n}: {fits} missions within {budget:g} m/s "
+            f"({len(pricing.columns)} paths certified)")  # fmt: skip
     undecided = {key: c for key, c in undecided.items() if key not in columns}
     return list(columns.values()), list(undecided.values()), complete
 

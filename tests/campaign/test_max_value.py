@@ -161,3 +161,18 @@ def test_the_campaigns_of_value_against_dv_are_the_brute_forces_front():
     assert front[-1]["value"] == pytest.approx(sol.value)
     with pytest.raises(MissionError, match="needs objective = 'max-value'"):
         solve_campaign(case.catalog(), Campaign.of([0.0], Mission(n=2)), pareto=3)
+
+
+def test_a_stopped_enumeration_returns_the_campaign_it_has_and_says_nothing_is_proven():
+    """Every launch's fewest debris are enumerated first, so a limit after them still
+    returns a campaign within the budgets: ``feasible``, no value or ΔV bound claimed."""
+    case = CASES[-1].values[0]
+    lines: list[str] = []
+    said = "mission 2 (launch day 365.25), n = 2"
+    sol = solve_campaign(case.catalog(), case.campaign(), workers=1, log=lines.append,
+                         stop=lambda: any(said in line for line in lines))  # fmt: skip
+    assert sol.status == RunStatus.FEASIBLE and not sol.certified
+    assert sol.value_bound is None and sol.lower_bound_mps is None
+    assert all(len(m.path) == 2 and m.total_dv_mps <= budget
+               for m, budget in zip(sol.missions, case.budgets, strict=True))  # fmt: skip
+    assert not any("n = 3" in line for line in lines)
