@@ -20,6 +20,7 @@ from ..errors import CatalogError, InputError, SdcError, listing
 from ..inputs.catalog import Catalog
 from ..physics.orbits import SECONDS_PER_DAY
 from .ephemeris import missing_phase
+from .solution_file import SolutionFileError, checked_solution
 
 
 class FlightError(InputError):
@@ -108,16 +109,18 @@ class FlightPlan:
 
         folder = Path(folder)
         data = _read_json(folder / "solution.json")
-        if not isinstance(data.get("legs"), list) or "mission" not in data:
-            raise FlightError(f"{folder / 'solution.json'}: not a solution of this version "
-                              "(no 'legs' or 'mission')")  # fmt: skip
-        _check_transfer(data["mission"].get("transfer", data.get("transfer", {}).get(
-            "transfer", "impulsive")), str(folder))  # fmt: skip
-        _check_start(data["mission"].get("injection"), str(folder))
+        try:
+            plan = checked_solution(data, folder / "solution.json")
+        except SolutionFileError as err:
+            raise FlightError(str(err)) from None
+        described = data.get("transfer") if isinstance(data.get("transfer"), dict) else {}
+        _check_transfer(plan["mission"].get("transfer", described.get("transfer", "impulsive")),
+                        str(folder))  # fmt: skip
+        _check_start(plan["mission"].get("injection"), str(folder))
         scenario_file = Path(scenario_file or folder / "scenario.toml")
         if not scenario_file.exists():
             raise FlightError(f"{folder}: no scenario.toml, so no catalog to fly against")
-        start = pd.Timestamp(data["start"]) if data.get("start") else None
+        start = plan["start"]
         try:
             scenario = Scenario.load(scenario_file)
             fitted = scenario.catalog_raan_rates != "j2"
@@ -135,19 +138,13 @@ class FlightPlan:
             later = 0.0 if start is None or day0 is None else (start - day0).total_seconds()
             return debris.advanced(later / SECONDS_PER_DAY)
 
+        legs = tuple(PlannedLeg(leg["from"], leg["to"], leg["departure_day"],
+                                leg["duration_days"], leg["drift_a_km"], leg["drift_inc_deg"],
+                                leg["side"], leg["dv_mps"], leg["laps"])
+                     for leg in plan["legs"])  # fmt: skip
         try:
-            legs = tuple(PlannedLeg(leg["from"], leg["to"], leg["departure_day"],
-                                    leg["duration_days"], leg["drift_a_km"], leg["drift_inc_deg"],
-                                    int(leg["side"]), leg["dv_mps"], int(leg.get("laps", 0)))
-                         for leg in data["legs"])  # fmt: skip
-        except (KeyError, TypeError, ValueError) as err:
-            raise FlightError(f"{folder / 'solution.json'}: a leg lacks {err} (another "
-                              "version's file?)") from None  # fmt: skip
-        mission = data["mission"]
-        try:
-            return cls._build(legs, catalog, float(mission["tmax_days"]),
-                              tuple(mission["drift_altitude_km"]),
-                              float(data["total_duration_days"]), rates=rates)  # fmt: skip
+            return cls._build(legs, catalog, plan["tmax_days"], plan["drift_altitude_km"],
+                              plan["total_duration_days"], rates=rates)  # fmt: skip
         except CatalogError as err:  # SGP4 cannot fly a debris over the window of its rate
             raise FlightError(f"{scenario_file}: {err}") from None
 

@@ -115,6 +115,38 @@ def test_a_solution_json_without_legs_is_another_versions(paper_run, tmp_path):
     assert_no_flight(folder)
 
 
+def _edit(data, change):
+    change(data)
+    return data
+
+
+EDITS = [  # (what a user did to solution.json, what the refusal names), found as a user
+    (lambda d: [1, 2, 3], "expected a JSON object"),
+    (lambda d: _edit(d, lambda d: d["legs"][1].update(departure_day="abc")),
+     "legs[1] (leg 2).departure_day"),
+    (lambda d: _edit(d, lambda d: d["mission"].pop("tmax_days")), "mission.tmax_days"),
+    (lambda d: _edit(d, lambda d: d.update(start="not-a-date")), "start: expected an ISO-8601"),
+    (lambda d: _edit(d, lambda d: d["legs"][0].update(duration_days=-3.0)),
+     "legs[0] (leg 1).duration_days"),
+    (lambda d: _edit(d, lambda d: d["legs"][0].update(drift_a_km=1000.0)),
+     "legs[0] (leg 1).drift_a_km"),
+    (lambda d: _edit(d, lambda d: d["legs"][1].update(**{"from": "99"})), "do not chain"),
+    (lambda d: _edit(d, lambda d: d.update(legs=[1, 2, 3])), "legs[0] (leg 1): expected an object"),
+    (lambda d: _edit(d, lambda d: d.update(path=d["path"][::-1])), "is not the legs' path"),
+]  # fmt: skip
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("edit, named", EDITS, ids=[named for _, named in EDITS])
+def test_an_edited_solution_json_is_refused_with_its_field(paper_run, tmp_path, edit, named):
+    """Each was a traceback (exit 1) or a flight of nonsense (exit 0)."""
+    folder = copy_of(paper_run, tmp_path)
+    data = json.loads((folder / "solution.json").read_text(encoding="utf-8"))
+    (folder / "solution.json").write_text(json.dumps(edit(data)), encoding="utf-8")
+    assert_refused(cli_process("fly", str(folder)), str(folder / "solution.json"), named)
+    assert_no_flight(folder)
+
+
 @pytest.mark.slow
 def test_a_run_folder_without_its_scenario(paper_run, tmp_path):
     folder = copy_of(paper_run, tmp_path)
