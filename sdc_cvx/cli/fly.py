@@ -51,6 +51,8 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
             flight.save(sub)
             click.echo(flight.summary(), err=not stdout)
             click.echo(f"results   {sub / 'flight'}/", err=not stdout)
+            if (said := flight.warning()) is not None:
+                click.echo(f"warning: {said} (flight.json: status {flight.status})", err=True)
     except SdcError as err:
         fail(str(err))
     except KeyboardInterrupt:

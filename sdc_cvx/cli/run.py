@@ -278,7 +278,9 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
         if start:
             click.echo(start)
         click.echo(f"results   {folder}/solution.json")
-    if fly_plan and solution.status.is_solved:
+    if fly_plan and solution.status == RunStatus.OVER_CAPACITY:
+        info("not flown: the plan needs more propellant than the vehicle's tank holds")
+    elif fly_plan and solution.status.is_solved:
         fly_folder(folder, force_model, quiet=quiet, stdout=not json_out)
     if solution.status == RunStatus.OVER_CAPACITY:  # written, but never called flyable
         fail(f"{solution.notes[-1]} (run folder {folder})", INFEASIBLE)

@@ -35,6 +35,10 @@ from .propagation import ForceModel
 
 MANEUVER_COLUMNS = ("epoch_utc", "leg", "kind", "dv_mps", "dv_r_mps", "dv_t_mps", "dv_n_mps",
                     "dv_x_mps", "dv_y_mps", "dv_z_mps")  # fmt: skip
+MISSED_KM = 100.0
+"""A rendezvous farther than this from its debris after the corrections is *missed* [km]
+(the flights of README's table end within 21 km; a plan flown against debris that
+moved as it did not expect ends hundreds of km away)."""
 RENDEZVOUS_COLUMNS = ("epoch_utc", "target", "miss_km", "miss_mps", "da_km", "di_deg",
                       "draan_deg", "correction_dv_mps", "phasing_shift_h", "phasing_dv_mps",
                       "delay_days", "in_time")  # fmt: skip
@@ -133,18 +137,42 @@ class Flight:
     @property
     def status(self) -> str:
         """``flown``; ``late`` when the flight ends after T_max; ``incomplete`` when a leg
-        could not be flown (``notes`` says which and why)."""
+        could not be flown (``notes`` says which and why); ``missed`` when a rendezvous
+        stays more than :data:`MISSED_KM` from its debris."""
         if not self.complete:
             return "incomplete"
+        if self.worst_miss_km > MISSED_KM:
+            return "missed"
         return "flown" if self.within_tmax else "late"
 
+    @property
+    def planned_dv_flown_mps(self) -> float:
+        """The plan's ΔV of the legs flown [m/s] (all of them when the flight is complete):
+        what the flown ΔV compares with."""
+        return float(sum(leg.dv_mps for leg in self.plan.legs[: len(self.rendezvous)]))
+
+    def warning(self) -> str | None:
+        """What a user must not miss about this flight (None: it flew as planned)."""
+        if not self.complete:
+            return f"incomplete flight: {self.notes[-1]}"
+        if self.worst_miss_km > MISSED_KM:
+            return (f"a rendezvous missed by {self.worst_miss_km:.0f} km (more than "
+                    f"{MISSED_KM:g} km): the corrections did not close it")  # fmt: skip
+        if not self.within_tmax:
+            return f"the flight ends on day {self.end_day:.2f}, after T_max"
+        return None
+
     def summary(self) -> str:
-        extra = 100.0 * (self.flown_dv_mps / self.plan_dv_mps - 1.0) if self.plan_dv_mps else 0.0
+        base = self.planned_dv_flown_mps
+        extra = 100.0 * (self.flown_dv_mps / base - 1.0) if base else 0.0
         limit = "within" if self.within_tmax else "LATE: beyond"
         limit += f" T_max {self.plan.tmax_days:g} d"
+        planned = f"plan {self.plan_dv_mps:.2f} m/s"
         if not self.complete:
             limit += f"; INCOMPLETE: {self.notes[-1]}"
-        return (f"flight    plan {self.plan_dv_mps:.2f} m/s, flown {self.flown_dv_mps:.2f} m/s "
+            planned += (f" ({base:.2f} m/s over the {len(self.rendezvous)} of "
+                        f"{len(self.plan.legs)} legs flown)")  # fmt: skip
+        return (f"flight    {planned}, flown {self.flown_dv_mps:.2f} m/s "
                 f"({extra:+.2f} %), worst miss {self.worst_miss_km:.2f} km; ends day "
                 f"{self.end_day:.2f}, {limit} ({self.force.describe()['name']}, "
                 f"{self.rates} rates, {self.seconds:.0f} s)")  # fmt: skip

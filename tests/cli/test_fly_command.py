@@ -292,3 +292,17 @@ def test_a_campaign_folder_is_flown_mission_by_mission(tmp_path):
                                       .read_text(encoding="utf-8"))["start"])
               for e in missions]  # fmt: skip
     assert starts[1] - starts[0] == pd.Timedelta(days=90)
+
+
+@pytest.mark.slow
+def test_run_fly_does_not_fly_a_plan_the_tank_cannot_hold(tmp_path):
+    """An over_capacity plan is never called flyable: found as a user, ``run --fly``
+    flew it and printed the flight as any other."""
+    scenario = sso_scenario(tmp_path, SSO_SCENARIO + "[vehicle]\ndry_mass_kg = 800\n"
+                            "propellant_kg = 2\nisp_s = 300\n")  # fmt: skip
+    folder = tmp_path / "run"
+    result = cli_process("run", str(scenario), "--fly", "--out", str(folder))
+    assert result.returncode == 3, result.stderr
+    assert "not flown: the plan needs more propellant" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert_no_flight(folder)

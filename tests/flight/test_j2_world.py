@@ -114,3 +114,21 @@ def test_first_order_rates_cost_corrections_the_fitted_ones_save(world_and_plan)
     model = fly(plan, ephemeris=world, rates="model")
     corrections = [sum(m.correction_dv_mps for m in f.rendezvous) for f in (fitted, model)]
     assert corrections[1] > 3 * corrections[0] > 0
+
+
+def test_a_flight_says_when_it_did_not_fly_as_planned(world_and_plan):
+    """Found as a user: a flight with a leg not flown compared its ΔV with the whole plan
+    (+14 % for 3 of 4 legs), and one that missed by 1 261 km said nothing; both exited 0."""
+    import dataclasses
+
+    world, solution = world_and_plan
+    flight = fly(FlightPlan.from_solution(solution), ephemeris=world)
+    assert flight.status == "flown" and flight.warning() is None
+    first = flight.rendezvous[0]
+    short = dataclasses.replace(flight, rendezvous=(first,), notes=("leg 2 not flown",))
+    assert short.status == "incomplete" and "leg 2 not flown" in short.warning()
+    assert short.planned_dv_flown_mps == pytest.approx(solution.legs[0].dv_mps)
+    assert f"{short.planned_dv_flown_mps:.2f} m/s over the 1 of 2 legs flown" in short.summary()
+    far = dataclasses.replace(first, miss_km=1261.1)
+    missed = dataclasses.replace(flight, rendezvous=(far, *flight.rendezvous[1:]))
+    assert missed.status == "missed" and "missed by 1261 km" in missed.warning()
