@@ -47,7 +47,7 @@ SEARCH_ITERATIONS = 64
 """Steps of a bound's frontier search at most (it stops earlier once resolved)."""
 BOX_CHUNK = 8192
 """Boxes bounded at once (the search's temporaries are about 16 of its arrays per box)."""
-SPEED_TOL = 1e-3
+SPEED_TOL = 3e-4
 """Step of speed [m/s] below which a bound's frontier search stops: the bound is then
 within about ``4 * 2.1 * SPEED_TOL`` of the best the enclosure proves (the cost's slope
 in w is at most 2 + (pi/2) dI)."""

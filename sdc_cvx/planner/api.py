@@ -271,9 +271,16 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
     ids = nodes.catalog.ids
     total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
     lower = float(min(lower_bound_mps, total))
-    optimal_gap = max(OPTIMAL_GAP_REL * total, OPTIMAL_GAP_MPS) * (1 + 1e-9)
+    # no finer than the model's box bounds resolve a mission (low thrust: mm/s a leg)
+    resolution = 2.0 * (len(path) - 1) * mission.transfer_model().bound_tol_mps
+    optimal_gap = max(OPTIMAL_GAP_REL * total, OPTIMAL_GAP_MPS, resolution) * (1 + 1e-9)
     if status == RunStatus.OPTIMAL and total - lower > optimal_gap:
         status = RunStatus.WITHIN_GAP  # the gap asked for, wider than what is called optimal
+    if status == RunStatus.OPTIMAL and total - lower > max(OPTIMAL_GAP_REL * total,
+                                                           OPTIMAL_GAP_MPS) * (1 + 1e-9):
+        notes = (*notes, f"optimal to the model's resolution: its bounds resolve about "
+                         f"{resolution:.3f} m/s over the {len(path) - 1} legs, more than "
+                         f"{100 * OPTIMAL_GAP_REL:g} % of this plan")  # fmt: skip
     legs = make_legs(ids, path, schedule.a_drift, schedule.inc_drift, schedule.side, plan,
                      orbits=orbits, mission=mission, laps=schedule.laps)  # fmt: skip
     legs, vehicle, status, vehicle_notes = with_vehicle(legs, nodes, path, mission, status)

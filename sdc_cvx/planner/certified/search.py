@@ -70,9 +70,8 @@ MAX_REFINE_ROUNDS = 30
 """Refinement rounds before a MILP at most (each certifies one path and splits cells)."""
 GRID_LEGS = 6
 """Legs from which the first plans come from a grid of dates too (n >= 7): below, the
-network's beam finds the optimum about as soon, and the grid's second or two would
-weigh on short runs (the paper case end to end) and on campaigns, which price many
-short missions."""
+network's beam finds the optimum about as soon, and the grid's second or two would weigh
+on short runs (the paper case) and on campaigns, which price many short missions."""
 LABELS = "labels"
 """The ``backend`` of a relaxation solved by labels rather than by a MILP."""
 MILP_STEP_S = 60.0
@@ -482,8 +481,9 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         search.notes.append(str(err))
         search.limited = True
     status = search.status(gap_rel)
-    # a plan held before any bound (a seed, a greedy plan): the bound every plan has
-    lower = max(min(search.proven, search.upper), nodes.least_cost())
+    if status == "feasible" and not search.limited:  # not a limit: the bounds' resolution
+        search.notes.append("the bounds cannot be refined further (their resolution)")
+    lower = max(min(search.proven, search.upper), nodes.least_cost())  # never -inf
     return CertifiedResult(search.path, search.schedule, search.upper, lower, status, rows,
                            milp_solves, search.parts.count(), time.perf_counter() - clock,
                            tuple(search.notes), edges=int(len(search.edge_from)),
