@@ -7,11 +7,13 @@ import concurrent.futures as cf
 import os
 import warnings
 
+import numpy as np
+
 from ..errors import MissionError
 from ..inputs.mission import Mission
 from ..milp.types import SolverOptions
 from ..study.executors import open_executor, unguarded_call_site
-from .pricing import price
+from .pricing import Pricing, price
 
 
 def check_options(solver, gap, time_limit_s, workers, scheduler, executor) -> None:
@@ -63,7 +65,12 @@ class PricingRuns:
             futures = {pool.submit(price, launch, **kwargs): launch for launch, kwargs in tasks}
             for count, future in enumerate(cf.as_completed(futures), start=1):
                 self.done(count, len(futures), futures[future])
-            return [future.result() for future in futures]  # in the tasks' order
+                if self.stop is not None and self.stop():  # Ctrl-C: none not yet started
+                    for waiting in futures:
+                        waiting.cancel()
+            # in the tasks' order; a task cancelled before it started proved nothing
+            return [_not_run(futures[future]) if future.cancelled() else future.result()
+                    for future in futures]  # fmt: skip
 
         return run
 
@@ -71,6 +78,12 @@ class PricingRuns:
         if self.context is not None:
             return self.context.__exit__(*exc)
         return False
+
+
+def _not_run(launch) -> Pricing:
+    """The pricing of a task cancelled before it started: no plan, no bound."""
+    return Pricing(launch.index, (), -np.inf, np.inf, "no_plan", 0.0,
+                   ("interrupted before this pricing started",), complete=False)  # fmt: skip
 
 
 def ignored_options(campaign, solver: SolverOptions) -> list[str]:

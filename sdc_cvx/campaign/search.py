@@ -200,10 +200,9 @@ class _Campaign:
             if result.status == "infeasible":
                 raise MissionInfeasible(_infeasible_launch(launch))
             if result.status == "no_plan":
-                raise SolverFailure(
-                    f"{launch.label()}: the time limit stopped the search before any plan; "
-                    "allow more time"
-                )
+                raise SolverFailure(f"{launch.label()}: " + ("interrupted before any plan" if
+                    self.stop() else "the time limit stopped the search before any plan; "
+                    "allow more time"))  # fmt: skip
             best = result.columns[0] if result.columns else None
             self.say(f"  {launch.label()} alone: {result.upper_mps:.2f} m/s "
                      f"({self.path_text(best)}; {result.seconds:.1f} s)")  # fmt: skip
@@ -215,6 +214,9 @@ class _Campaign:
         missions: list[Column] = []
         required = list(self.must)
         for launch, first in zip(self.launches, alone, strict=True):
+            if self.out_of_time():  # Ctrl-C or the limit: no greedy campaign, the pool stays
+                return GreedyCampaign(None, tuple(missions), f"{self.limit_reached()} before "
+                                      f"{launch.label()}")  # fmt: skip
             left = [k for k in required if k not in removed]
             must = left[: launch.mission.n]
             if not removed and not must and first.columns:
@@ -244,6 +246,9 @@ class _Campaign:
         """
         last = None
         for round_ in range(1, MAX_ROUNDS + 1):
+            if self.out_of_time():
+                self.notes.append(f"{self.limit_reached()} during column generation")
+                break
             lp = solve_lp(self.pool.columns, len(self.launches), len(self.catalog), self.must)
             tasks = [(launch, dict(prices=lp.prices, tol_mps=self.tol,
                                    stop_above_mps=lp.sigma[k] - self.tol,
@@ -415,17 +420,12 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)
-    if not isinstance(pareto, int) or isinstance(pareto, bool) or pareto < 0:
-        raise MissionError(f"pareto must be a number of campaigns >= 0, got {pareto!r}")
-    if campaign.objective == "max-value":
-        from .value import value_campaign
+    if campaign.objective == "max-value" or pareto:
+        from .value import value_campaign  # checks pareto too
 
         return value_campaign(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
                               say=say, stop=stop or (lambda: False), clock=clock,
                               pareto=pareto)  # fmt: skip
-    if pareto:
-        raise MissionError("pareto: value against ΔV needs objective = 'max-value' (with "
-                           "each mission's dv_budget_mps)")  # fmt: skip
     launches = len(campaign)
     inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
     with PricingRuns(inline, executor, scheduler, workers, launches, stop, say) as run:

@@ -35,7 +35,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..errors import MissionInfeasible
+from ..errors import MissionError, MissionInfeasible
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
@@ -206,6 +206,11 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     """:func:`solve_max_value` as a :class:`CampaignSolution` (``solve_campaign``'s answer
     for ``objective = "max-value"``; its pricing runs in this process), with ``pareto``
     points of :func:`pareto_front` (none: 0)."""
+    if not isinstance(pareto, int) or isinstance(pareto, bool) or pareto < 0:
+        raise MissionError(f"pareto must be a number of campaigns >= 0, got {pareto!r}")
+    if campaign.objective != "max-value":
+        raise MissionError("pareto: value against ΔV needs objective = 'max-value' (with "
+                           "each mission's dv_budget_mps)")  # fmt: skip
     found = solve_max_value(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
                             say=say, stop=stop)  # fmt: skip
     front = ()

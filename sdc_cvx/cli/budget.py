@@ -16,8 +16,12 @@ WRITE_S = 1.0
 MISSION_FOLDER_S = 0.6
 """One mission folder of a campaign, and the campaign's own files [s] (GTOC9, five
 missions: 3.5 s in all)."""
-PAIR_S = 8e-6
-"""The run folder's pre-optimised edge table (edges.csv), per ordered pair [s]."""
+PAIR_S = {"impulsive": 8e-6, "low-thrust": 1.2e-4}
+"""The run folder's pre-optimised edge table (edges.csv), per ordered pair [s], by
+transfer model (481 fragments: 1.8 s impulsive; 60 of them: 115 us a pair low-thrust)."""
+EDGES_SHARE = 0.25
+"""With a time limit, edges.csv is written only when it is expected to take at most this
+share of the limit (it is extra: ``python -m sdc_cvx edges`` writes it on its own)."""
 LEAST_SHARE = 0.25
 """The search gets at least this share of the limit, whatever the estimates say."""
 
@@ -40,6 +44,17 @@ def search_limit(limit_s: float | None, started: float, writing_s: float) -> flo
     return max(left, LEAST_SHARE * limit_s)
 
 
-def run_writing_s(candidates: int) -> float:
-    """Estimate [s] of writing a run folder of ``candidates`` debris (edges.csv included)."""
-    return WRITE_S + PAIR_S * candidates * max(candidates - 1, 0)
+def edges_s(candidates: int, transfer: str) -> float:
+    """Estimate [s] of the pre-optimised edge table of ``candidates`` debris."""
+    return PAIR_S.get(transfer, PAIR_S["low-thrust"]) * candidates * max(candidates - 1, 0)
+
+
+def writes_edges(limit_s: float | None, candidates: int, transfer: str) -> bool:
+    """Whether a run with ``limit_s`` writes edges.csv (always without a limit)."""
+    return limit_s is None or edges_s(candidates, transfer) <= EDGES_SHARE * limit_s
+
+
+def run_writing_s(candidates: int, transfer: str = "impulsive", edges: bool = True) -> float:
+    """Estimate [s] of writing a run folder of ``candidates`` debris (``edges``: with
+    edges.csv)."""
+    return WRITE_S + (edges_s(candidates, transfer) if edges else 0.0)

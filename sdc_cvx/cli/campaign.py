@@ -177,6 +177,9 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
             interrupted_exit(f"interrupted: nothing written{kept}")
         except (SolverFailure, SweepError) as err:
             kept = f" (progress in {live_log})" if live_log is not None else ""
+            if stop():  # a Ctrl-C before any campaign: interrupted, not a failure
+                steps.__exit__(None, None, None)
+                interrupted_exit(f"interrupted before any campaign: nothing written{kept}")
             fail(f"solver failure: {err}{kept}", exit_code(err))
         steps.set_phase("writing the campaign folder")
         steps.say(solution.summary(), show=False)

@@ -14,7 +14,7 @@ import click
 
 from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, SolverFailure
 from ..milp.types import DEFAULT_BACKEND
-from .budget import run_writing_s, search_limit
+from .budget import edges_s, run_writing_s, search_limit, writes_edges
 from .exits import (
     INFEASIBLE,
     INPUT_ERROR,
@@ -194,10 +194,15 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
 
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
     header = run_header(catalog, mission, solver)
+    edges = writes_edges(solver.time_limit_s, len(catalog), mission.transfer)
+    if not edges:
+        header += (f"\nNo edges.csv: the pre-optimised edge table would take about "
+                   f"{edges_s(len(catalog), mission.transfer):.0f} s of the time limit "
+                   "(python -m sdc_cvx edges writes it).")  # fmt: skip
     if solver.method == "certified" and solver.time_limit_s is not None:
         limit = solver.time_limit_s
         solver = dataclasses.replace(solver, time_limit_s=search_limit(
-            limit, started, run_writing_s(len(catalog))))  # fmt: skip
+            limit, started, run_writing_s(len(catalog), mission.transfer, edges)))  # fmt: skip
         header += (f"\nThe search gets {solver.time_limit_s:.1f} s of the {limit:g} s limit "
                    "(the rest reads the catalog and writes the run folder).")  # fmt: skip
     info(header)
@@ -234,7 +239,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
         steps.set_phase("writing the run folder")
         steps.say(solution.summary(), show=False)
         try:  # the edge table (edges.csv) is extra: a Ctrl-C here keeps the answer
-            edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days)
+            edge_table = preoptimize(catalog, mission, departure_day=mission.deorbit_days) \
+                if edges else None  # fmt: skip
         except KeyboardInterrupt:
             edge_table = None
             steps.say("interrupted while pre-optimising the edge table: the run folder is "

@@ -131,6 +131,24 @@ def test_ctrl_c_on_campaign_keeps_the_campaign_in_hand(tmp_path, catalog):
     assert not live.exists()
 
 
+@pytest.mark.slow
+def test_ctrl_c_before_any_campaign_stops_at_once_and_says_so(tmp_path, catalog):
+    """Found as a user: a Ctrl-C during the launches alone was said ("stopping at the next
+    step") but the campaign went on with the other launches, greedy and a whole round.
+    Now the launches not yet priced are not, greedy and the rounds are skipped, and the
+    command ends as interrupted (exit 130), not as a solver failure."""
+    live = tmp_path / "out.log"
+    run = start_campaign(tmp_path, catalog, SCENARIO, "--workers", "1")
+    wait_for(run, live, "pricing: 1 of 3 launches done")
+    run.send_signal(signal.SIGINT)
+    _, stderr = run.communicate(timeout=600)
+    assert run.returncode == 130, stderr
+    assert "interrupted before any campaign: nothing written" in stderr
+    assert "Traceback" not in stderr and not (tmp_path / "out").exists()
+    said = live.read_text() if live.exists() else ""
+    assert "greedy campaign:" not in said and "round 1 (" not in said
+
+
 def test_an_earlier_campaign_folder_with_files_of_the_user_is_refused(catalog, tmp_path):
     """Files of the user inside a mission folder, or a mission folder the earlier
     campaign.json does not list, are never deleted by a new campaign into that folder."""
