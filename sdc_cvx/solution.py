@@ -345,6 +345,8 @@ class Solution:
         count = len(self.iterations)
         if self.method == "certified":
             solves = self.model_size.get("milp_solves", count)
+            if self.model_size.get("date_cells", 1) == 0:  # stopped in the cost tables
+                return "greedy chains of pre-optimised legs, each scheduled exactly (no relaxation)"
             if solves == 0:
                 return "certified search, every relaxation solved by labels (no MILP)"
             return (

@@ -97,3 +97,42 @@ def test_hundreds_of_unknown_ids_are_not_listed_whole():
         Catalog.paper_case().subset([f"X{k}" for k in range(360)])
     message = str(caught.value)
     assert "'X0'" in message and "and 348 more" in message and len(message) < 500
+
+
+def test_accel_on_the_command_line_replaces_the_scenarios_thrust(tmp_path):
+    """Found as a user: `run examples/low_thrust.toml --accel 1e-3` was refused ("give
+    thrust_n or accel_mps2, not both") although flags override the scenario."""
+    from sdc_cvx.study.scenario import apply_overrides
+    from tests.conftest import EXAMPLES
+
+    base = Scenario.load(EXAMPLES / "low_thrust.toml")
+    assert base.mission.vehicle.thrust_n is not None
+    changed = apply_overrides(base, {"vehicle.accel_mps2": 1e-3}, origin="command line")
+    assert changed.mission.vehicle.accel_mps2 == 1e-3 and changed.mission.vehicle.thrust_n is None
+    assert changed.mission.vehicle.dry_mass_kg == base.mission.vehicle.dry_mass_kg
+
+
+def test_a_sweep_may_vary_the_vehicle(tmp_path):
+    """Found as a user: a grid on vehicle.thrust_n was refused as "not a dotted key"."""
+    from sdc_cvx.study.study import load_study
+    from tests.conftest import EXAMPLES
+
+    path = tmp_path / "study.toml"
+    path.write_text(f'base = "{(EXAMPLES / "low_thrust.toml").as_posix()}"\n[grid]\n'
+                    '"vehicle.thrust_n" = [0.05, 0.2]\n')  # fmt: skip
+    study = load_study(path)
+    assert [s.scenario.mission.vehicle.thrust_n for s in study.scenarios] == [0.05, 0.2]
+
+
+def test_options_a_run_ignores_are_said_through_a_real_process(tmp_path):
+    """Found as a user: --accel without --transfer low-thrust, and --force-model without
+    --fly, were silently ignored."""
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "run", "--n", "3", "--accel", "1e-4",
+                           "--force-model", "j2-j4", "--quiet", "--out", str(tmp_path / "r")],
+                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "warning: --accel is a low-thrust vehicle's" in done.stderr
+    assert "warning: --force-model is --fly's" in done.stderr

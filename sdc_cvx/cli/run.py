@@ -109,7 +109,7 @@ if TYPE_CHECKING:
 @click.option("--svg", is_flag=True, help="Also save the figures as SVG.")
 @click.option("--fly", "fly_plan", is_flag=True,
               help="Then fly the plan (as 'fly RUN_DIR' does): RUN_DIR/flight/.")
-@click.option("--force-model", type=click.Choice(FORCE_MODELS), default="j2",
+@click.option("--force-model", type=click.Choice(FORCE_MODELS), default=None,
               help="With --fly: the vehicle's force model [j2].")  # fmt: skip
 @click.option("--verbose", is_flag=True, default=None,
               help="Show the MILP backend's own log (on stderr).")  # fmt: skip
@@ -158,6 +158,12 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
                               names, types, strict),
     )  # fmt: skip
+    if accel_mps2 is not None and scenario.mission.transfer != "low-thrust":
+        click.echo("warning: --accel is a low-thrust vehicle's: the impulsive model plans "
+                   "without it (add --transfer low-thrust)", err=True)  # fmt: skip
+    if force_model is not None and not fly_plan:
+        click.echo("warning: --force-model is --fly's: no flight without --fly", err=True)
+    force_model = force_model or "j2"
     if scenario.campaign is not None:
         click.echo(f"warning: {scenario_file} has a [campaign] table: `run` plans the one "
                    "mission of its [mission] table; `python -m sdc_cvx campaign "

@@ -122,7 +122,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         raise MissionInfeasible(_infeasible_message(mission))
     if result.status == "no_plan":
         bound = (f"; no plan costs less than {result.lower_mps:.2f} m/s"
-                 if np.isfinite(result.lower_mps) else "")  # fmt: skip
+                 if np.isfinite(result.lower_mps) and result.lower_mps > 0 else "")  # fmt: skip
         raise SolverFailure(
             f"the search stopped before finding any plan ({'; '.join(result.notes)}){bound}: "
             "allow more time (--time-limit, solver.time_limit_s)"

@@ -367,6 +367,9 @@ def apply_overrides(scenario: Scenario, changes: Mapping, origin: str = "overrid
             if not format_given:
                 data["catalog"].pop("format", None)  # choose it again from the extension
         data.setdefault(table, {})[key] = value
+        alternative = {"accel_mps2": "thrust_n", "thrust_n": "accel_mps2"}.get(key)
+        if table == "vehicle" and alternative is not None:  # given one, the other goes
+            data["vehicle"].pop(alternative, None)
     if problems:
         raise ScenarioError.collect(origin, problems)
     if data["catalog"]["path"] is None:

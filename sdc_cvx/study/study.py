@@ -46,7 +46,7 @@ from .toml import read_toml, toml_line
 _STUDY_KEYS = ("base", "grid", "cases")
 
 
-_SCENARIO_TABLES = ("catalog", "mission", "solver", "selection")
+_SCENARIO_TABLES = ("catalog", "mission", "solver", "selection", "vehicle")
 
 
 _CASE_LABEL = "label"
@@ -329,7 +329,7 @@ def _dotted(key: str) -> bool:
 def _not_dotted(key: str) -> str:
     return (
         f"key {key!r} is not a dotted key table.name of a scenario value (e.g. mission.n, "
-        f"mission.tmax_days, solver.backend, catalog.path)"
+        f"mission.tmax_days, solver.backend, catalog.path, vehicle.thrust_n)"
     )
 
 
