@@ -138,7 +138,8 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
           stop_above_mps: float = np.inf,
           ceiling_mps: float = -np.inf,
           time_limit_s: float | None = None, exclude=(), must_visit=(), seeds=(),
-          known=None, stop=None, sent_at: float | None = None) -> Pricing:  # fmt: skip
+          known=None, stop=None, sent_at: float | None = None,
+          least_s: float = 0.0) -> Pricing:  # fmt: skip
     """The cheapest missions of ``launch`` with ``prices`` added to the debris' costs.
 
     Parameters
@@ -163,7 +164,7 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     sent_at : float, optional
         ``time.time()`` when the task was handed out: the time it waited for a worker
         counts against ``time_limit_s`` (a queue of 5 launches on 2 workers overran a
-        15 s campaign by 4 s).
+        15 s campaign by 4 s), down to ``least_s`` [s].
     exclude, must_visit : sequence of int
         Catalog rows this pricing must leave out / must remove (the greedy campaign).
     seeds : sequence of tuple of int
@@ -181,7 +182,7 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     restore_malloc()  # a Dask worker's malloc thresholds make it 2-3 times slower
     clock = time.perf_counter()
     if time_limit_s is not None and sent_at is not None:  # time spent waiting counts
-        time_limit_s = max(time_limit_s - (time.time() - sent_at), 0.0)
+        time_limit_s = max(time_limit_s - (time.time() - sent_at), least_s, 0.0)
     mission = launch.mission
     nodes = MissionNodes.of(launch.catalog, mission)
     orbits = node_orbits(nodes.catalog, mission)

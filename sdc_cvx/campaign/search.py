@@ -119,6 +119,7 @@ class _Campaign:
         self.notes: list[str] = []
         self.tol = PATH_TOL_MPS
         self.backends: set[str] = set()
+        self.at_once = 1  # pricings that run at once (solve_campaign sets it)
 
     # ------------------------------------------------------------------ helpers
     def remaining(self) -> float | None:
@@ -156,17 +157,19 @@ class _Campaign:
         self.say(f"  {step}: plan {plan}, {bound}, {len(self.pool)} columns, "
                  f"{self.pricings} pricings")  # fmt: skip
 
-    def price_all(self, tasks, *, wait_counts: bool = True) -> list[Pricing]:
+    def price_all(self, tasks, *, share: bool = False) -> list[Pricing]:
         """Run the pricing ``tasks`` (launch, keyword arguments) where they run, each with
         the schedules the pool knows of its launch's paths.  A task that waits for a
-        worker has that much less time (``wait_counts``), except in the launches alone:
-        without each launch's plan there is no campaign to return."""
+        worker has that much less time; with ``share`` (the launches alone: without each
+        launch's plan there is no campaign) never less than its share of the time left."""
         left = self.remaining()
+        waves = -(-len(tasks) // max(self.at_once, 1))
+        least = left / waves if share and left is not None else 0.0
         known: dict[int, dict] = {}
         for column in self.pool.columns:
             known.setdefault(column.launch, {})[column.nodes] = column.schedule
         out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left,
-                                      sent_at=time.time() if wait_counts else None,
+                                      sent_at=time.time(), least_s=least,
                                       known=known.get(launch.index),
                                       path_tol_rel=self.gap_rel / 2))
                         for launch, kwargs in tasks])  # fmt: skip
@@ -193,7 +196,7 @@ class _Campaign:
         self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
                  "each launch alone")  # fmt: skip
         alone = self.price_all([(launch, self.unpriced()) for launch in self.launches],
-                               wait_counts=False)  # fmt: skip
+                               share=True)  # fmt: skip
         self.alone_bounds = [result.lower_mps for result in alone]
         for launch, result in zip(self.launches, alone, strict=True):
             self.pool.add(result.columns)
@@ -430,6 +433,7 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
     with PricingRuns(inline, executor, scheduler, workers, launches, stop, say) as run:
         search = _Campaign(catalog, campaign, solver, gap, deadline, say, run, stop)
+        search.at_once = 1 if inline else at_once
         alone = search.launches_alone()
         greedy = search.greedy(alone)
         search.master_plan()

@@ -60,6 +60,7 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     """
     columns: dict[tuple, Column] = {}
     undecided: dict[tuple, Column] = {}
+    floor: dict[tuple, float] = {}  # per (launch, set): the least bound of any of its orders
     complete = True
     # the fewest debris of every launch first: a limit then leaves a campaign to return
     steps = sorted(((n - campaign.fewest(k), k, n) for k, launch in enumerate(launches)
@@ -68,7 +69,8 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
         launch, budget = launches[k], float(campaign.dv_budget_mps[k])
         left = deadline - time.perf_counter()
         if left <= 0 or stop():
-            return list(columns.values()), list(undecided.values()), False
+            complete = False
+            break
         sized = replace(launch, mission=launch.mission.replace(n=n))
         pricing = price(sized, solver=solver, gap_rel=PATH_GAP_REL,
                         path_tol_rel=PATH_GAP_REL, ceiling_mps=budget + OPTIMAL_GAP_MPS,
@@ -78,6 +80,7 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
         fits = 0
         for column in pricing.columns:
             key = (k, column.debris)
+            floor[key] = min(floor.get(key, np.inf), column.lower_mps)
             if column.dv_mps <= budget:
                 fits += 1
                 if key not in columns or column.dv_mps < columns[key].dv_mps:
@@ -88,6 +91,9 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
         say(f"  {launch.label()}, n = {n}: {fits} missions within {budget:g} m/s "
             f"({len(pricing.columns)} paths certified)")  # fmt: skip
     undecided = {key: c for key, c in undecided.items() if key not in columns}
+    # the set kept through its cheapest order, bounded by its least bound of any order
+    columns = {key: replace(c, lower_mps=floor[key]) for key, c in columns.items()}
+    undecided = {key: replace(c, lower_mps=floor[key]) for key, c in undecided.items()}
     return list(columns.values()), list(undecided.values()), complete
 
 
