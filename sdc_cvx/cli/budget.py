@@ -3,7 +3,7 @@ the catalog took and writing the folder will take leave of it.
 
 The writing estimates were measured on this project's cases (a run folder's figures and
 tables, about a second; its pre-optimised edge table, 1.8 s for the 230 880 ordered
-pairs of 481 TLE fragments; a campaign, about a second per mission folder): a user who
+pairs of 481 TLE fragments; a campaign, 0.6 s a mission folder): a user who
 asks for 12 s gets the answer in about 12 s, not 12 s of search and then the folder.
 """
 
