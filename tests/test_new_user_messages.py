@@ -136,3 +136,15 @@ def test_options_a_run_ignores_are_said_through_a_real_process(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "warning: --accel is a low-thrust vehicle's" in done.stderr
     assert "warning: --force-model is --fly's" in done.stderr
+
+
+def test_a_position_on_the_orbit_that_is_not_a_number_is_named(tmp_path):
+    """Found as a user: `arglat_deg = abc` was read as blank, then `fly` said the catalog
+    gave no arglat_deg; blank stays allowed (optional per row)."""
+    from sdc_cvx.errors import CatalogError
+
+    path = tmp_path / "debris.csv"
+    path.write_text("id,a_km,e,inc_deg,raan_deg,arglat_deg\n1,7178,0.001,98.6,10,abc\n"
+                    "2,7180,0.001,98.6,12,\n3,7190,0.001,98.6,14,45\n")  # fmt: skip
+    with pytest.raises(CatalogError, match="row 1.*field 'arglat_deg': expected a number"):
+        Catalog.from_csv(path)

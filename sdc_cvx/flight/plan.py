@@ -119,6 +119,9 @@ class FlightPlan:
         _check_start(plan["mission"].get("injection"), str(folder))
         scenario_file = Path(scenario_file or folder / "scenario.toml")
         if not scenario_file.exists():
+            if (folder.parent / "campaign.json").exists():  # a mission of a campaign
+                raise FlightError(f"{folder}: a mission folder of a campaign: fly the "
+                                  f"campaign folder {folder.parent} (its scenario is there)")
             raise FlightError(f"{folder}: no scenario.toml, so no catalog to fly against")
         start = plan["start"]
         try:

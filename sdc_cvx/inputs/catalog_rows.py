@@ -160,6 +160,7 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
     epochs: list = [None] * n
     seen: dict[str, int] = {}
     cells = {name: raw[name].tolist() for name in ("id", *_CHECKS)}  # .iat is slow
+    phases = {name: raw[name].tolist() for name in PHASE_NUMBERS if name in raw.columns}
     epoch_cells = raw["epoch"].tolist() if has_epoch else None
     for pos in range(n):
         if pos in broken:
@@ -178,6 +179,9 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
             )
         if has_epoch:
             epochs[pos], errors["epoch"] = to_epoch(epoch_cells[pos])
+        for name, column in phases.items():  # optional, but a number where given
+            if not is_blank(column[pos]):
+                errors[name] = to_float(column[pos], _no_check)[1]
         if flagged:
             continue
         if not (errors["a_km"] or errors["e"]):
@@ -299,6 +303,10 @@ def _check_raan(value: float) -> str | None:
     ok = -MAX_ABS_RAAN_DEG <= value <= MAX_ABS_RAAN_DEG
     return None if ok else "expected an angle in [-36000, 36000] deg (wrapped), got {got}"
 
+
+PHASE_NUMBERS = ("arglat_deg", "argp_deg", "mean_anomaly_deg", "bstar")
+"""Optional columns (where a debris is on its orbit, its drag term) that must be numbers
+where a row gives them: a flight reads them (an 'abc' read as 'no arglat_deg' misled)."""
 
 _CHECKS = {
     "a_km": _check_a,

@@ -259,6 +259,9 @@ def test_the_small_campaign_of_the_paper_cannot_be_flown(tmp_path):
     assert_refused(cli_process("fly", str(folder)), "paper Table 5", "no epochs")
     for mission in sorted(folder.glob("mission_*")):
         assert_no_flight(mission)
+    # one mission folder of it: pointed to the campaign folder, whose scenario it needs
+    assert_refused(cli_process("fly", str(folder / "mission_01")), "a mission folder of a "
+                   "campaign", f"fly the campaign folder {folder}")  # fmt: skip
 
 
 @pytest.mark.slow
