@@ -153,7 +153,11 @@ class CampaignSolution:
                 f"mission {k + 1:<2d} day {day:8.2f}  {' -> '.join(mission.path):<40} "
                 f"{mission.total_dv_mps:8.2f} m/s  {mission.total_duration_days:7.2f} d"
             )
-        if self.value is not None:
+        price = self.campaign.price_per_value_mps
+        if self.value is not None and price is not None:
+            lines.append(f"value     {self.value:g} removed at {price:g} m/s a unit: ΔV - "
+                         f"price x value = {self.total_dv_mps - price * self.value:.2f} m/s")
+        elif self.value is not None:
             bound = "not proven" if self.value_bound is None else f"{self.value_bound:g}"
             lines.append(f"value     {self.value:g} removed (the most any campaign removes: "
                          f"{bound})")  # fmt: skip

@@ -423,7 +423,7 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)
-    if campaign.objective == "max-value" or pareto:
+    if campaign.objective != "min-dv" or pareto:
         from .value import value_campaign  # checks pareto too
 
         return value_campaign(catalog, campaign, solver=solver, gap=gap, deadline=deadline,

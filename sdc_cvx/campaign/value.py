@@ -136,7 +136,11 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         "every mission within its budget")  # fmt: skip
     columns, undecided, complete = enumerate_missions(launches, campaign, solver=solver,
                                                       deadline=deadline, say=say, stop=stop)
-    plan, value = best_value(columns, values, len(launches), len(catalog), solver=solver)
+    price = campaign.price_per_value_mps if campaign.objective == "value-per-dv" else None
+    if price is None:
+        plan, value = best_value(columns, values, len(launches), len(catalog), solver=solver)
+    else:
+        plan, value = _priced(columns, values, price, len(launches), len(catalog), solver)
     if plan is None:
         if complete and not undecided:
             empty = [launch.label() for launch in launches
@@ -152,9 +156,16 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
     # the most any campaign could be worth, and the least that value could cost
     everything = columns + undecided
     lows = np.array([c.lower_mps for c in everything])
-    floor_plan, value_bound = best_value(everything, values, len(launches), len(catalog),
-                                         solver=solver, costs=lows)  # fmt: skip
-    dv_bound = floor_plan.value if value_bound <= value + VALUE_TOL * max(1.0, value) else 0.0
+    if price is None:
+        floor_plan, value_bound = best_value(everything, values, len(launches), len(catalog),
+                                             solver=solver, costs=lows)  # fmt: skip
+        dv_bound = floor_plan.value if value_bound <= value + VALUE_TOL * max(1.0, value) \
+            else 0.0  # fmt: skip
+    else:  # no campaign's ΔV - price · value is below the same over every path's bound
+        floor_plan, _ = _priced(everything, values, price, len(launches), len(catalog), solver,
+                                lows)  # fmt: skip
+        value_bound = value  # not what is proven here: the priced objective is
+        dv_bound = dv - max((dv - price * value) - floor_plan.value, 0.0)
     allowed = max(gap * dv, OPTIMAL_GAP_MPS * len(launches))
     proven = complete and value_bound <= value + VALUE_TOL * max(1.0, value) \
         and dv - dv_bound <= allowed * (1 + 1e-9)  # fmt: skip
@@ -166,10 +177,21 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                      "are undecided: the value bound counts them")  # fmt: skip
     status = RunStatus.OPTIMAL if proven else RunStatus.FEASIBLE
     return dict(plan=chosen, launches=launches, value=value,
-                value_bound=value_bound if complete else None, dv_mps=dv,
+                value_bound=value_bound if complete and price is None else None, dv_mps=dv,
                 dv_bound_mps=dv_bound if complete else None, status=status,
                 columns=len(columns), notes=tuple(notes), pool=(columns, undecided, values),
                 complete=complete)  # fmt: skip
+
+
+def _priced(columns: list, values: np.ndarray, price: float, launches: int, debris: int,
+            solver: SolverOptions, costs=None):  # fmt: skip
+    """The campaign of ``columns`` least in ``Σ cost − price · Σ value`` (``costs``:
+    default the columns' ΔV): (plan, its value) or (None, -inf).  The plan's ``value``
+    is the priced objective [m/s]."""
+    worth = np.array([values[list(c.debris)].sum() for c in columns])
+    costs = np.array([c.dv_mps for c in columns]) if costs is None else np.asarray(costs)
+    plan = solve_ip(columns, launches, debris, solver=solver, costs=costs - price * worth)
+    return (None, -np.inf) if plan is None else (plan, float(worth[list(plan.chosen)].sum()))
 
 
 def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: int,
@@ -214,7 +236,7 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     points of :func:`pareto_front` (none: 0)."""
     if not isinstance(pareto, int) or isinstance(pareto, bool) or pareto < 0:
         raise MissionError(f"pareto must be a number of campaigns >= 0, got {pareto!r}")
-    if campaign.objective != "max-value":
+    if pareto and campaign.objective != "max-value":
         raise MissionError("pareto: value against ΔV needs objective = 'max-value' (with "
                            "each mission's dv_budget_mps)")  # fmt: skip
     found = solve_max_value(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
@@ -239,8 +261,8 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     missions = tuple(mission_solution(launch, c, status, solver.backend)
                      for launch, c in zip(sized, found["plan"], strict=True))  # fmt: skip
     value, bound = found["value"], found["value_bound"]
-    say(f"  most value {value:g} (no campaign removes more than "
-        f"{'unknown' if bound is None else f'{bound:g}'}), {found['dv_mps']:.2f} m/s")
+    say(f"  value {value:g} (the most any campaign removes: "
+        f"{'not proven' if bound is None else f'{bound:g}'}), {found['dv_mps']:.2f} m/s")
     return CampaignSolution(
         campaign=campaign, catalog=catalog, missions=missions,
         total_dv_mps=found["dv_mps"], lower_bound_mps=found["dv_bound_mps"], status=status,

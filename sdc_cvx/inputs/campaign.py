@@ -34,10 +34,11 @@ drag and the debris' own decay, which change the orbits over longer spans); a mi
 launch day plus its ``tmax_days`` stays within it, as a single mission's ``tmax_days`` does."""
 MAX_LAUNCH_DAY = MAX_CAMPAIGN_DAYS
 """The last launch day allowed [days after the start]."""
-OBJECTIVES = ("min-dv", "max-value")
+OBJECTIVES = ("min-dv", "max-value", "value-per-dv")
 """``min-dv``: exactly ``n`` debris per mission at the least total ΔV; ``max-value``: the
 most value removed, each mission within its ΔV budget and between ``n_min`` and ``n``
-debris, and among campaigns of equal value the least ΔV."""
+debris, and among campaigns of equal value the least ΔV; ``value-per-dv``: under the same
+budgets and ranges, the least ``Σ ΔV − price · Σ value`` (``price_per_value_mps``)."""
 
 
 @dataclass(frozen=True)
@@ -66,6 +67,8 @@ class Campaign:
     values : tuple of (str, float)
         ``max-value``: the value of removing each debris (by id; a debris not named is
         worth 0); empty: every debris is worth 1 (the most debris removed).
+    price_per_value_mps : float, optional
+        ``value-per-dv``: the ΔV a unit of value is worth [m/s] (> 0).
 
     Raises
     ------
@@ -83,6 +86,7 @@ class Campaign:
     dv_budget_mps: tuple[float, ...] = ()
     n_min: tuple[int, ...] = ()
     values: tuple[tuple[str, float], ...] = ()
+    price_per_value_mps: float | None = None
 
     def __post_init__(self):
         if isinstance(self.launch_days, numbers.Real):
@@ -153,14 +157,22 @@ class Campaign:
             return
         if self.objective == "min-dv":
             for name, said in (("dv_budget_mps", "dv_budget_mps"), ("values", "values"),
-                               ("n_min", "n ranges [n_min, n_max]")):  # fmt: skip
+                               ("n_min", "n ranges [n_min, n_max]"),
+                               ("price_per_value_mps", "price_per_value_mps")):  # fmt: skip
                 if getattr(self, name):
                     yield f"{said} are for objective = 'max-value' (min-dv removes exactly n)"
             return
+        price = self.price_per_value_mps
+        if self.objective == "value-per-dv" and not (_is_real(price) and np.isfinite(price)
+                                                     and price > 0):  # fmt: skip
+            yield (f"objective = 'value-per-dv' needs price_per_value_mps, the ΔV a unit of "
+                   f"value is worth (a number > 0 [m/s]), got {price!r}")  # fmt: skip
+        elif self.objective == "max-value" and price is not None:
+            yield "price_per_value_mps is for objective = 'value-per-dv'"
         budgets = self.dv_budget_mps
         if len(budgets) != count:
-            yield (f"objective = 'max-value' needs dv_budget_mps, one per launch (or one for "
-                   f"all) [m/s], got {list(budgets) or 'none'}")  # fmt: skip
+            yield (f"objective = {self.objective!r} needs dv_budget_mps, one per launch (or "
+                   f"one for all) [m/s], got {list(budgets) or 'none'}")  # fmt: skip
         elif not all(_is_real(b) and np.isfinite(b) and b > 0 for b in budgets):
             yield f"dv_budget_mps must be numbers > 0 [m/s], got {list(budgets)}"
         if self.n_min:
@@ -309,7 +321,8 @@ class Campaign:
         } | ({} if self.objective == "min-dv" else {
             "objective": self.objective, "dv_budget_mps": list(self.dv_budget_mps),
             "n_min": [self.fewest(k) for k in range(len(self.missions))],
-            "values": dict(self.values)})  # fmt: skip
+            "values": dict(self.values)}) | ({} if self.price_per_value_mps is None else {
+            "price_per_value_mps": self.price_per_value_mps})  # fmt: skip
 
 
 def _per_launch(name, value, default, count):

@@ -297,6 +297,8 @@ class Scenario:
                     "dv_budget_mps": campaign["dv_budget_mps"],
                     "n": [[low, high] for low, high in zip(campaign["n_min"], campaign["n"],
                                                           strict=True)]}  # fmt: skip
+                if "price_per_value_mps" in campaign:
+                    data["campaign"]["price_per_value_mps"] = campaign["price_per_value_mps"]
         if "vehicle" in data["mission"]:
             data["vehicle"] = data["mission"].pop("vehicle")
         return data

@@ -123,7 +123,7 @@ _VEHICLE_KEYS = tuple(f.name for f in dataclasses.fields(Vehicle))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
 _SELECTION_KEYS = tuple(f.name for f in dataclasses.fields(Selection))
 _CAMPAIGN_KEYS = ("launch_days", "missions", "first_launch_day", "period_days", "n", "tmax_days",
-                  "must_remove", "objective", "dv_budget_mps")  # fmt: skip
+                  "must_remove", "objective", "dv_budget_mps", "price_per_value_mps")  # fmt: skip
 TABLE_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS,
               "selection": _SELECTION_KEYS, "campaign": _CAMPAIGN_KEYS,
               "vehicle": _VEHICLE_KEYS}  # fmt: skip
@@ -144,6 +144,7 @@ _TYPES = {
         "must_remove": tuple[str, ...],
         "objective": str,
         "dv_budget_mps": object,
+        "price_per_value_mps": float,
     },  # launch_days, n, tmax_days, dv_budget_mps: _campaign
     "vehicle": typing.get_type_hints(Vehicle),
 }
@@ -278,7 +279,8 @@ def _campaign(values: dict, mission: Mission, problems: list[str],
         budget = values.get("dv_budget_mps", ())
         options |= {"objective": values.get("objective", "min-dv"),
                     "dv_budget_mps": budget if isinstance(budget, list | tuple) else [budget],
-                    "values": debris_values}  # fmt: skip
+                    "values": debris_values,
+                    "price_per_value_mps": values.get("price_per_value_mps")}  # fmt: skip
     try:
         if days is not None:
             return Campaign.of([float(d) for d in days], mission, **options)

@@ -176,3 +176,27 @@ def test_a_stopped_enumeration_returns_the_campaign_it_has_and_says_nothing_is_p
     assert all(len(m.path) == 2 and m.total_dv_mps <= budget
                for m, budget in zip(sol.missions, case.budgets, strict=True))  # fmt: skip
     assert not any("n = 3" in line for line in lines)
+
+
+@pytest.mark.parametrize("price", [2.0, 200.0])  # 18 for 84 m/s; 22 for 577 m/s
+def test_value_per_dv_is_the_brute_forces_least_priced_campaign(price):
+    """``objective = "value-per-dv"``: the least Σ ΔV − price · Σ value under the same
+    budgets and ranges; a low price buys little value, a high one much."""
+    from tests.campaign.bruteforce import campaigns_of, value_options
+
+    case = CASES[-1].values[0]
+    options, margin = value_options(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                                    case.budgets, case.rule)  # fmt: skip
+    best = min(dv - price * worth for worth, dv, _ in campaigns_of(options, case.values()))
+    campaign = Campaign.of(case.launch_days, Mission(drift_inclination=case.rule),
+                           n=[list(r) for r in case.ranges], tmax_days=list(case.tmax),
+                           objective="value-per-dv", dv_budget_mps=list(case.budgets),
+                           values=case.values(), price_per_value_mps=price)  # fmt: skip
+    sol = solve_campaign(case.catalog(), campaign, workers=1)
+    assert sol.status == RunStatus.OPTIMAL
+    priced = sol.total_dv_mps - price * sol.value
+    assert priced == pytest.approx(best, abs=len(case.ranges) * GRID_TOL_MPS)
+    assert sol.lower_bound_mps - price * sol.value <= best + 1e-6
+    assert f"price x value = {priced:.2f} m/s" in sol.summary()
+    with pytest.raises(MissionError, match="needs price_per_value_mps"):
+        Campaign.of([0.0], Mission(n=3), objective="value-per-dv", dv_budget_mps=100)
