@@ -31,7 +31,10 @@ from .results import CertifiedNodes, CertifiedResult
 
 STARTS = 8
 """Chains grown, one from each of the cheapest first legs."""
-CHUNK = 20_000
+FIRST_SHARE = 0.4
+"""Share of the time left the first legs may take: they leave the debris in an order
+spread over the catalog and stop there (low thrust, every pair of 481 debris: 28 s)."""
+CHUNK = 4_000
 """Edges pre-optimised at once (the deadline is read between chunks)."""
 
 
@@ -62,14 +65,16 @@ def greedy_plan(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     n = len(nodes.ops_days)
     allowed = np.ones(n, dtype=bool)
     allowed[list(nodes.excluded)] = False
-    starts = [nodes.first] if nodes.first is not None else np.flatnonzero(allowed)
-    ii, jj = np.meshgrid(np.asarray(starts), np.flatnonzero(allowed), indexing="ij")
+    starts = np.asarray([nodes.first] if nodes.first is not None else np.flatnonzero(allowed))
+    starts = starts[np.argsort((np.arange(len(starts)) * 0.6180339887) % 1.0)]  # spread
+    ii, jj = np.meshgrid(starts, np.flatnonzero(allowed), indexing="ij")
     ii, jj = ii[ii != jj], jj[ii != jj]
     if nodes.first is not None:
         allowed[nodes.first] = False  # nothing flies back to the start
     budget = _leg_budget(nodes, float(np.max(nodes.ops_days[ii], initial=0.0)), nodes.legs)
+    soon = time.perf_counter() + FIRST_SHARE * (deadline - time.perf_counter())
     first = _cheapest_legs(orbits, nodes, ii, jj, nodes.ops_days[ii], budget, a_low, a_high,
-                           deadline)  # fmt: skip
+                           deadline, enough=soon)  # fmt: skip
     if first is None:
         return None
     best = None
@@ -103,11 +108,15 @@ def _leg_budget(nodes: CertifiedNodes, depart_days: float, legs_left: int) -> fl
     return max(left, 0.0) / max(legs_left, 1)
 
 
-def _cheapest_legs(orbits, nodes, i, j, depart_days, budget_days, a_low, a_high, deadline):
+def _cheapest_legs(orbits, nodes, i, j, depart_days, budget_days, a_low, a_high, deadline,
+                   enough=np.inf):  # fmt: skip
     """Pre-optimised legs i -> j leaving at ``depart_days``: (ΔV [m/s], arrival [days]),
-    ``inf`` where none lasts at most ``budget_days``; None when the time ran out."""
+    ``inf`` where none lasts at most ``budget_days`` (or past ``enough``: the legs not
+    reached by then are left out); None when the time ran out."""
     dv, arrive = np.full(len(i), np.inf), np.full(len(i), np.inf)
     for start in range(0, len(i), CHUNK):
+        if start and time.perf_counter() >= enough:
+            break
         if time.perf_counter() >= deadline:
             return None
         rows = slice(start, start + CHUNK)

@@ -73,7 +73,7 @@ def cost_table_clock(search, every_s: float | None = None):
     fallback = getattr(search, "fallback", False)
 
     def on_chunk(done: int, total: int) -> None:
-        nonlocal last, warned, greedy
+        nonlocal started, last, warned, greedy
         now = time.perf_counter()
         if done < total and (now >= search.deadline or search.stop()):
             why = "interrupted" if search.stop() else "time limit reached"
@@ -88,7 +88,8 @@ def cost_table_clock(search, every_s: float | None = None):
             search.say(f"  the edge cost tables need about {need:.0f} s of the "
                        f"{search.deadline - started:.0f} s left: first a plan without them")
             search.find_greedy()
-            now = time.perf_counter()
+            paused = time.perf_counter() - now  # the tables' own clock leaves it out
+            started, last, now = started + paused, last + paused, now + paused
         if not warned and beyond:
             warned = True
             then = "with the plan found without them" if fallback else "without a plan"

@@ -64,10 +64,8 @@ SEED_PATHS = 4
 FIRST_ARCS = 1.5e6
 """About the most arcs of the first network (before a plan prunes edges): the initial
 cells per debris are fewer when the edges are many."""
-CANDIDATES = 40
-"""Beam paths whose cells are refined together before a relaxation MILP is solved."""
-MAX_REFINE_ROUNDS = 30
-"""Refinement rounds before a MILP at most (each certifies one path and splits cells)."""
+CANDIDATES = 40  # beam paths whose cells are refined together before a relaxation MILP
+MAX_REFINE_ROUNDS = 30  # before a MILP at most (each certifies one path and splits cells)
 GRID_LEGS = 6
 """Legs from which the first plans come from a grid of dates too (n >= 7): below, the
 network's beam finds the optimum about as soon, and the grid's second or two would weigh
@@ -368,8 +366,10 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
         for seed in seeds:
             if len(seed) == nodes.legs + 1:
                 search.try_path(seed, "seed")
+        if fallback and search.greedy is None and 3 * time.perf_counter() > deadline + 2 * clock:
+            search.find_greedy()  # past a third of the limit: the first network may not end
         if search.greedy is not None:
-            search.try_path(search.greedy[0], "greedy, before the tables were done")
+            search.try_path(search.greedy[0], "greedy")
         use_grid = nodes.legs >= GRID_LEGS if date_grid is None else date_grid
         if use_grid:  # near-optimal plans before any network: they prune
             search.say("  cheap plans from a grid of dates (a beam search)")
