@@ -35,7 +35,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..errors import MissionError, MissionInfeasible
+from ..errors import MissionError, MissionInfeasible, SolverFailure
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
@@ -97,12 +97,17 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     return list(columns.values()), list(undecided.values()), complete
 
 
+def _worth(columns: list, values: np.ndarray) -> np.ndarray:
+    """The value each column (mission) removes."""
+    return np.array([values[list(c.debris)].sum() for c in columns])
+
+
 def best_value(columns: list, values: np.ndarray, launches: int, debris: int, *,
                solver: SolverOptions, costs=None):  # fmt: skip
     """The most valuable campaign of ``columns``, then its least ΔV: (plan, value) or
     (None, -inf) when no campaign can be made of them.  ``costs`` (default the columns'
     ΔV) are what the second stage minimises."""
-    worth = np.array([values[list(c.debris)].sum() for c in columns])
+    worth = _worth(columns, values)
     most = solve_ip(columns, launches, debris, solver=solver, costs=-worth)
     if most is None:
         return None, -np.inf
@@ -179,8 +184,8 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
     return dict(plan=chosen, launches=launches, value=value,
                 value_bound=value_bound if complete and price is None else None, dv_mps=dv,
                 dv_bound_mps=dv_bound if complete else None, status=status,
-                columns=len(columns), notes=tuple(notes), pool=(columns, undecided, values),
-                complete=complete)  # fmt: skip
+                columns=len(columns), notes=tuple(notes),
+                pool=(columns, undecided, values))  # fmt: skip
 
 
 def _priced(columns: list, values: np.ndarray, price: float, launches: int, debris: int,
@@ -188,7 +193,7 @@ def _priced(columns: list, values: np.ndarray, price: float, launches: int, debr
     """The campaign of ``columns`` least in ``Σ cost − price · Σ value`` (``costs``:
     default the columns' ΔV): (plan, its value) or (None, -inf).  The plan's ``value``
     is the priced objective [m/s]."""
-    worth = np.array([values[list(c.debris)].sum() for c in columns])
+    worth = _worth(columns, values)
     costs = np.array([c.dv_mps for c in columns]) if costs is None else np.asarray(costs)
     plan = solve_ip(columns, launches, debris, solver=solver, costs=costs - price * worth)
     return (None, -np.inf) if plan is None else (plan, float(worth[list(plan.chosen)].sum()))
@@ -205,8 +210,8 @@ def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: i
     costs less (the ε-constraint method: every point is on the front, within the bound).
     """
     everything = columns + undecided
-    worth = np.array([values[list(c.debris)].sum() for c in columns])
-    worth_all = np.array([values[list(c.debris)].sum() for c in everything])
+    worth = _worth(columns, values)
+    worth_all = _worth(everything, values)
     lows = np.array([c.lower_mps for c in everything])
     cheapest = solve_ip(columns, launches, debris, solver=solver)
     _, most = best_value(columns, values, launches, debris, solver=solver)
@@ -252,8 +257,6 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
                       for row in front)  # fmt: skip
         say(f"  value against ΔV: {len(front)} campaigns of the front")
     if found["plan"] is None:
-        from ..errors import SolverFailure
-
         raise SolverFailure(f"{found['notes'][0]}: allow more time")
     status = found["status"]
     sized = [replace(launch, mission=launch.mission.replace(n=len(c.debris)))

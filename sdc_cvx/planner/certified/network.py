@@ -66,7 +66,8 @@ def cost_table_clock(search, every_s: float | None = None):
     """``LegCosts.build``'s chunk callback: the fraction done every ``every_s`` [s], a
     word up front when the tables alone will outlast the time limit, and the limit
     itself, or the caller's stop (:class:`OutOfTime`).  ``search`` has the ``deadline``
-    and ``stop`` (read at each chunk) and ``say``."""
+    and ``stop`` (read at each chunk) and ``say``; with ``fallback`` true, also
+    ``find_greedy`` and ``greedy`` (a plan first when the tables are late)."""
     every_s = SETUP_PROGRESS_S if every_s is None else every_s
     started = last = time.perf_counter()
     warned = greedy = False
