@@ -224,3 +224,30 @@ def mission_solution(launch: Launch, column: Column, status, backend: str):
                        status=status, lower_bound_mps=column.lower_mps, backend=backend,
                        notes=(note,), model_size={"launch_day": launch.day},
                        timings={})  # fmt: skip
+
+
+def best_of_counts(results: list[Pricing]) -> Pricing:
+    """One launch's variants priced alone, as one pricing: every column, cheapest first;
+    infeasible only if every count is; no plan if none has one."""
+    columns = tuple(sorted((c for r in results for c in r.columns), key=lambda c: c.dv_mps))
+    statuses = {r.status for r in results}
+    status = ("infeasible" if statuses == {"infeasible"} else "no_plan" if not columns
+              else "optimal" if statuses <= {"optimal", "infeasible"} else "feasible")
+    return Pricing(results[0].launch, columns, min(r.lower_mps for r in results),
+                   min(r.upper_mps for r in results), status,
+                   max(r.seconds for r in results),
+                   tuple(note for r in results for note in r.notes),
+                   all(r.complete for r in results))  # fmt: skip
+
+
+def infeasible_launch(launch: Launch, campaign) -> str:
+    """Why ``launch`` makes its campaign infeasible (every count of it proven so)."""
+    mission = launch.mission
+    count = campaign.counts_text().split(", ")[launch.index]
+    return (
+        f"{launch.label()}: proven that no mission of n = {count} debris ends within "
+        f"T_max = {mission.tmax_days:g} days from that day (certified search over every "
+        "ordered pair of debris), so no campaign does. Relax one of: a longer mission "
+        "(tmax_days), fewer debris (n), a wider drift altitude band "
+        f"{mission.drift_altitude_km}, another launch day"
+    )

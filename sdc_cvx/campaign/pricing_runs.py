@@ -47,7 +47,8 @@ class PricingRuns:
 
     def done(self, count: int, total: int, launch) -> None:
         if total > 1:
-            self.say(f"  pricing: {count} of {total} launches done (mission {launch.index + 1})")
+            self.say(f"  pricing: {count} of {total} done (mission {launch.index + 1}, "
+                     f"n = {launch.mission.n})")  # fmt: skip
 
     def __enter__(self):
         if self.inline:

@@ -37,7 +37,7 @@ from __future__ import annotations
 import time
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -48,8 +48,16 @@ from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from ..planner.size_guard import size_problem
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
+from .greedy import greedy_campaign
 from .master import solve_ip, solve_lp
-from .pricing import Column, Launch, Pricing, mission_solution
+from .pricing import (
+    Column,
+    Launch,
+    Pricing,
+    best_of_counts,
+    infeasible_launch,
+    mission_solution,
+)
 from .pricing_runs import (
     PricingRuns,
     check_options,
@@ -109,8 +117,12 @@ class _Campaign:
         self.gap_rel, self.deadline, self.say, self.run = gap_rel, deadline, say, run
         self.stop = stop or (lambda: False)
         self.launches = Launch.all_of(campaign, catalog)
+        # a launch with a range of n is priced once per count (its variants)
+        self.variants = [replace(launch, mission=launch.mission.replace(n=count))
+                         for k, launch in enumerate(self.launches)
+                         for count in range(campaign.fewest(k), launch.mission.n + 1)]  # fmt: skip
         index = {k: n for n, k in enumerate(catalog.ids)}
-        self.must = tuple(index[k] for k in campaign.must_remove)
+        self.must = tuple(index[k] for k in campaign.required(catalog))
         self.pool = _Pool()
         self.upper, self.plan, self.lower = np.inf, None, -np.inf
         self.history: list[dict] = []
@@ -179,7 +191,18 @@ class _Campaign:
     def unpriced(self, **options) -> dict:
         """Options of a pricing without prices (a launch alone, greedy): the mission's own
         gap, halved (its plan is a column and greedy's value, not a bound)."""
-        return dict(tol_mps=PATH_TOL_MPS, gap_rel=self.gap_rel / 2, **options)
+        return {"tol_mps": PATH_TOL_MPS, "gap_rel": self.gap_rel / 2, **options}
+
+    def variant(self, k: int, count: int) -> Launch:
+        """Launch ``k`` flying ``count`` debris."""
+        return next(v for v in self.variants if v.index == k and v.mission.n == count)
+
+    def per_launch(self, results: list[Pricing]) -> np.ndarray:
+        """Each launch's least lower bound over its variants' ``results`` [m/s]."""
+        bounds = np.full(len(self.launches), np.inf)
+        for result in results:
+            bounds[result.launch] = min(bounds[result.launch], result.lower_mps)
+        return bounds
 
     def master_plan(self) -> None:
         """The integer master over the pool: the plan, if it improves."""
@@ -195,13 +218,15 @@ class _Campaign:
         """Step 1: each launch priced alone; infeasible launches end the campaign."""
         self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
                  "each launch alone")  # fmt: skip
-        alone = self.price_all([(launch, self.unpriced()) for launch in self.launches],
-                               share=True)  # fmt: skip
-        self.alone_bounds = [result.lower_mps for result in alone]
+        results = self.price_all([(launch, self.unpriced()) for launch in self.variants],
+                                 share=True)  # fmt: skip
+        self.alone_bounds = self.per_launch(results)
+        alone = [best_of_counts([r for r in results if r.launch == k])
+                 for k in range(len(self.launches))]  # fmt: skip
         for launch, result in zip(self.launches, alone, strict=True):
             self.pool.add(result.columns)
             if result.status == "infeasible":
-                raise MissionInfeasible(_infeasible_launch(launch))
+                raise MissionInfeasible(infeasible_launch(launch, self.campaign))
             if result.status == "no_plan":
                 raise SolverFailure(f"{launch.label()}: " + ("interrupted before any plan" if
                     self.stop() else "the time limit stopped the search before any plan; "
@@ -213,33 +238,7 @@ class _Campaign:
 
     def greedy(self, alone: list[Pricing]) -> GreedyCampaign:
         """Step 2: one mission at a time, the cheapest of the debris left."""
-        removed: list[int] = []
-        missions: list[Column] = []
-        required = list(self.must)
-        for launch, first in zip(self.launches, alone, strict=True):
-            if self.out_of_time():  # Ctrl-C or the limit: no greedy campaign, the pool stays
-                return GreedyCampaign(None, tuple(missions), f"{self.limit_reached()} before "
-                                      f"{launch.label()}")  # fmt: skip
-            left = [k for k in required if k not in removed]
-            must = left[: launch.mission.n]
-            if not removed and not must and first.columns:
-                result = first  # the first launch alone is greedy's first mission
-            else:
-                result = self.price_all([(launch, self.unpriced(exclude=removed,
-                                                                must_visit=must))])[0]  # fmt: skip
-                self.pool.add(result.columns)
-            if not result.columns:
-                why = "time limit" if result.status == "no_plan" else "no mission flies"
-                self.say(f"  greedy stops at {launch.label()}: {why} with the debris left")
-                return GreedyCampaign(None, tuple(missions), f"{launch.label()}: {why} "
-                                      "with the debris the earlier missions left")  # fmt: skip
-            missions.append(result.columns[0])
-            removed += list(result.columns[0].debris)
-        if any(k not in removed for k in required):
-            return GreedyCampaign(None, tuple(missions), "must_remove debris left over")
-        total = float(sum(c.dv_mps for c in missions))
-        self.say(f"  greedy campaign: {total:.2f} m/s")
-        return GreedyCampaign(total, tuple(missions), "")
+        return greedy_campaign(self, alone)
 
     def generate_columns(self) -> tuple[np.ndarray, np.ndarray] | None:
         """Step 3: column generation until the LP is solved, the gap met or time out.
@@ -254,11 +253,11 @@ class _Campaign:
                 break
             lp = solve_lp(self.pool.columns, len(self.launches), len(self.catalog), self.must)
             tasks = [(launch, dict(prices=lp.prices, tol_mps=self.tol,
-                                   stop_above_mps=lp.sigma[k] - self.tol,
-                                   seeds=self.seeds(k, lp.prices)))
-                     for k, launch in enumerate(self.launches)]  # fmt: skip
+                                   stop_above_mps=lp.sigma[launch.index] - self.tol,
+                                   seeds=self.seeds(launch, lp.prices)))
+                     for launch in self.variants]  # fmt: skip
             results = self.price_all(tasks)
-            bounds = np.array([r.lower_mps for r in results])
+            bounds = self.per_launch(results)
             lagrangian = float(bounds.sum() - lp.prices.sum())
             if np.isfinite(lagrangian) and lagrangian > self.lower:
                 # the closing step needs the prices of the bound it closes from
@@ -266,8 +265,7 @@ class _Campaign:
             new = sum(self.pool.add(r.columns) for r in results)
             self.master_plan()
             self.record(f"round {round_} (LP {lp.value:.2f} m/s, {new} new columns)", lp.value)
-            solved = all(r.lower_mps >= lp.sigma[k] - self.tol - 1e-9
-                         for k, r in enumerate(results))  # fmt: skip
+            solved = all(bounds >= lp.sigma - self.tol - 1e-9)
             if solved and lp.artificial > 1e-6:
                 # the LP needs an artificial column at its optimum: no campaign is likely,
                 # but a big-M cost proves it only where no price reaches it, so the closing
@@ -300,16 +298,23 @@ class _Campaign:
             window = self.upper - self.lower
             self.say(f"  closing the gap: every mission within {window:.2f} m/s of its "
                      "launch's best reduced cost")  # fmt: skip
+        ceilings = np.asarray(bounds) + window + self.tol
         tasks = [(launch, dict(prices=prices, tol_mps=self.tol,
-                               ceiling_mps=bounds[k] + window + self.tol))
-                 for k, launch in enumerate(self.launches)]  # fmt: skip
+                               ceiling_mps=ceilings[launch.index]))
+                 for launch in self.variants]  # fmt: skip
         results = self.price_all(tasks)
         new = sum(self.pool.add(r.columns) for r in results)
         self.master_plan()
         if all(r.complete for r in results):
+            # a path the enumeration left out costs at least its launch's ceiling under the
+            # prices: a floor of its own where its schedule's bound is weaker (one cut off
+            # early under large prices bounds it by 0)
+            enumerated = {c.key for r in results for c in r.columns}
+            costs = [c.lower_mps if c.key in enumerated else max(
+                c.lower_mps, ceilings[c.launch] - float(np.sum(prices[list(c.debris)])))
+                for c in self.pool.columns]  # fmt: skip
             lower = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
-                             solver=self.solver,
-                             costs=[c.lower_mps for c in self.pool.columns])  # fmt: skip
+                             solver=self.solver, costs=costs)  # fmt: skip
             if lower is None:
                 raise MissionInfeasible(
                     "proven: no campaign removes each debris at most once with these "
@@ -325,9 +330,10 @@ class _Campaign:
         self.record(f"closing ({new} new columns)")
 
     # ------------------------------------------------------------------ words
-    def seeds(self, k: int, prices) -> list[tuple[int, ...]]:
-        """The pool's cheapest paths of launch k under the prices (incumbents to start)."""
-        mine = [c for c in self.pool.columns if c.launch == k]
+    def seeds(self, launch: Launch, prices) -> list[tuple[int, ...]]:
+        """The pool's cheapest paths of ``launch`` under the prices (incumbents to start)."""
+        mine = [c for c in self.pool.columns
+                if c.launch == launch.index and len(c.debris) == launch.mission.n]  # fmt: skip
         mine.sort(key=lambda c: c.dv_mps + float(np.sum(prices[list(c.debris)])))
         return [c.nodes for c in mine[:3]]
 
@@ -339,19 +345,9 @@ class _Campaign:
         return " -> ".join(ids[k] for k in column.nodes)
 
     def missions_text(self) -> str:
-        return ", ".join(f"n = {m.n} from day {d:g}" for d, m in zip(
-            self.campaign.launch_days, self.campaign.missions, strict=True))  # fmt: skip
-
-
-def _infeasible_launch(launch: Launch) -> str:
-    mission = launch.mission
-    return (
-        f"{launch.label()}: proven that no mission of n = {mission.n} debris ends within "
-        f"T_max = {mission.tmax_days:g} days from that day (certified search over every "
-        "ordered pair of debris), so no campaign does. Relax one of: a longer mission "
-        "(tmax_days), fewer debris (n), a wider drift altitude band "
-        f"{mission.drift_altitude_km}, another launch day"
-    )
+        counts = self.campaign.counts_text().split(", ")
+        return ", ".join(f"n = {n} from day {d:g}" for d, n in zip(
+            self.campaign.launch_days, counts, strict=True))  # fmt: skip
 
 
 def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions | None = None,
@@ -416,8 +412,11 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     for message in ignored_options(campaign, solver):
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     campaign.check_candidates(catalog)
-    workers = guarded_workers(workers, scheduler, executor, len(campaign))
-    at_once = pricings_at_once(workers, scheduler, executor, len(campaign))
+    # one pricing per launch and count (a range of n prices each count)
+    tasks = sum(m.n - campaign.fewest(k) + 1 for k, m in enumerate(campaign.missions)) \
+        if campaign.objective == "min-dv" else len(campaign)  # fmt: skip
+    workers = guarded_workers(workers, scheduler, executor, tasks)
+    at_once = pricings_at_once(workers, scheduler, executor, tasks)
     if (problem := size_problem(len(catalog), at_once)) is not None:
         raise MissionError(problem)
     clock = time.perf_counter()
@@ -430,8 +429,8 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
                               say=say, stop=stop or (lambda: False), clock=clock,
                               pareto=pareto)  # fmt: skip
     launches = len(campaign)
-    inline = executor is None and scheduler is None and (workers == 1 or launches == 1)
-    with PricingRuns(inline, executor, scheduler, workers, launches, stop, say) as run:
+    inline = executor is None and scheduler is None and (workers == 1 or tasks == 1)
+    with PricingRuns(inline, executor, scheduler, workers, tasks, stop, say) as run:
         search = _Campaign(catalog, campaign, solver, gap, deadline, say, run, stop)
         search.at_once = 1 if inline else at_once
         alone = search.launches_alone()
@@ -496,5 +495,5 @@ def _solution(search: _Campaign, greedy: GreedyCampaign, seconds: float) -> Camp
 
 
 def _mission_solution(search: _Campaign, column: Column, status: RunStatus):
-    return mission_solution(search.launches[column.launch], column, status,
+    return mission_solution(search.variant(column.launch, len(column.debris)), column, status,
                             "+".join(sorted(search.backends)) or search.solver.backend)

@@ -130,9 +130,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     if (problem := scheduler_problem(scheduler)) is not None:  # before any work
         fail(f"--scheduler: {problem}")
     header = (
-        f"Campaign of {len(campaign)} missions (launch days "
-        f"{', '.join(f'{d:g}' for d in campaign.launch_days)}; n = "
-        f"{', '.join(_count(campaign, k) for k in range(len(campaign)))}) from {len(catalog)} "
+        f"Campaign of {len(campaign)} missions (launch days {_days_text(campaign.launch_days)}"
+        f"; n = {_shortened(campaign.counts_text().split(', '))}) from {len(catalog)} "
         f"candidates of "
         f"{catalog.source}; gap {gap:g}."
     )
@@ -214,7 +213,20 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         click.echo(f"warning: {solution.status}; see the notes in campaign.json", err=True)
 
 
-def _count(campaign, k: int) -> str:
-    """Mission k's debris: ``n``, or ``n_min-n_max`` with a range."""
-    low, high = campaign.fewest(k), campaign.missions[k].n
-    return f"{high}" if low == high else f"{low}-{high}"
+def _shortened(items: list[str], most: int = 8) -> str:
+    """``items`` joined, the middle left out past ``most`` (``a, b, c, ..., z (25)``)."""
+    if len(items) <= most:
+        return ", ".join(items)
+    if len(set(items)) == 1:
+        return f"{items[0]} each"
+    return f"{', '.join(items[:3])}, ..., {items[-1]} ({len(items)})"
+
+
+def _days_text(days) -> str:
+    """Launch days as text: every one, or the first, last and period when evenly spaced."""
+    import numpy as np
+
+    steps = np.diff(days)
+    if len(days) > 8 and np.allclose(steps, steps[0]):
+        return f"{days[0]:g} to {days[-1]:g}, every {steps[0]:g}"
+    return _shortened([f"{d:g}" for d in days])

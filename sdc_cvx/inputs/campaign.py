@@ -35,7 +35,8 @@ launch day plus its ``tmax_days`` stays within it, as a single mission's ``tmax_
 MAX_LAUNCH_DAY = MAX_CAMPAIGN_DAYS
 """The last launch day allowed [days after the start]."""
 OBJECTIVES = ("min-dv", "max-value", "value-per-dv")
-"""``min-dv``: exactly ``n`` debris per mission at the least total ΔV; ``max-value``: the
+"""``min-dv``: ``n`` debris per mission (or between ``n_min`` and ``n``) at the least
+total ΔV; ``max-value``: the
 most value removed, each mission within its ΔV budget and between ``n_min`` and ``n``
 debris, and among campaigns of equal value the least ΔV; ``value-per-dv``: under the same
 budgets and ranges, the least ``Σ ΔV − price · Σ value`` (``price_per_value_mps``)."""
@@ -56,14 +57,17 @@ class Campaign:
     missions : tuple of Mission
         The mission flown from each launch day (its ``tmax_days`` counts from it).
     must_remove : tuple of str
-        Debris ids that some mission must remove.
+        Debris ids that some mission must remove (one id may be given as a string).
+    remove_all : bool
+        Every candidate must be removed (``must_remove`` all of the catalog's ids; the
+        missions' counts must add up: ``sum(n_min) <= candidates <= sum(n)``).
     objective : {"min-dv", "max-value"}
         See :data:`OBJECTIVES`.
     dv_budget_mps : tuple of float
         ``max-value``: each mission's total ΔV budget [m/s] (one per launch).
     n_min : tuple of int
-        ``max-value``: the fewest debris of each mission (one per launch; default its
-        ``n``, the most).
+        The fewest debris of each mission (one per launch; default its ``n``, the most):
+        each mission then removes between ``n_min`` and ``n``.
     values : tuple of (str, float)
         ``max-value``: the value of removing each debris (by id; a debris not named is
         worth 0); empty: every debris is worth 1 (the most debris removed).
@@ -82,6 +86,7 @@ class Campaign:
     launch_days: tuple[float, ...]
     missions: tuple[Mission, ...]
     must_remove: tuple[str, ...] = ()
+    remove_all: bool = False
     objective: str = "min-dv"
     dv_budget_mps: tuple[float, ...] = ()
     n_min: tuple[int, ...] = ()
@@ -91,11 +96,8 @@ class Campaign:
     def __post_init__(self):
         if isinstance(self.launch_days, numbers.Real):
             object.__setattr__(self, "launch_days", (self.launch_days,))
-        if isinstance(self.must_remove, str):
-            raise MissionError(
-                f"campaign: must_remove must be a list of debris ids, got the string "
-                f"{self.must_remove!r} (write [{self.must_remove!r}])"
-            )
+        if isinstance(self.must_remove, str):  # one id, as Mission's must_include takes it
+            object.__setattr__(self, "must_remove", (self.must_remove,))
         object.__setattr__(self, "launch_days", tuple(self.launch_days))
         object.__setattr__(self, "missions", tuple(self.missions))
         object.__setattr__(self, "must_remove", tuple(str(k) for k in self.must_remove))
@@ -149,18 +151,21 @@ class Campaign:
                 )
         if len(set(self.must_remove)) != len(self.must_remove):
             yield f"must_remove names a debris twice: {list(self.must_remove)}"
+        if not isinstance(self.remove_all, bool):
+            yield f"remove_all must be true or false, got {self.remove_all!r}"
+        elif self.remove_all and self.must_remove:
+            yield "remove_all removes every candidate: leave must_remove out"
 
     def _value_problems(self):
         count = len(self.launch_days)
         if self.objective not in OBJECTIVES:
             yield f"objective must be one of {', '.join(OBJECTIVES)}, got {self.objective!r}"
             return
+        yield from self._range_problems(count)
         if self.objective == "min-dv":
-            for name, said in (("dv_budget_mps", "dv_budget_mps"), ("values", "values"),
-                               ("n_min", "n ranges [n_min, n_max]"),
-                               ("price_per_value_mps", "price_per_value_mps")):  # fmt: skip
+            for name in ("dv_budget_mps", "values", "price_per_value_mps"):
                 if getattr(self, name):
-                    yield f"{said} are for objective = 'max-value' (min-dv removes exactly n)"
+                    yield f"{name} are for objective = 'max-value' (min-dv removes n per mission)"
             return
         price = self.price_per_value_mps
         if self.objective == "value-per-dv" and not (_is_real(price) and np.isfinite(price)
@@ -175,6 +180,15 @@ class Campaign:
                    f"one for all) [m/s], got {list(budgets) or 'none'}")  # fmt: skip
         elif not all(_is_real(b) and np.isfinite(b) and b > 0 for b in budgets):
             yield f"dv_budget_mps must be numbers > 0 [m/s], got {list(budgets)}"
+        bad_values = [(k, v) for k, v in self.values
+                      if not (_is_real(v) and np.isfinite(v) and v >= 0)]  # fmt: skip
+        if bad_values:
+            yield f"values must be numbers >= 0, got {bad_values[:5]}"
+        if self.must_remove or self.remove_all:
+            yield ("must_remove and remove_all are for objective = 'min-dv' (max-value chooses "
+                   "what to remove)")  # fmt: skip
+
+    def _range_problems(self, count: int):
         if self.n_min:
             bad = len(self.n_min) != count or not all(
                 isinstance(k, numbers.Integral) and not isinstance(k, bool) and 2 <= k <= m.n
@@ -183,12 +197,6 @@ class Campaign:
                 yield (f"n ranges must be [n_min, n_max] with 2 <= n_min <= n_max, one per "
                        f"launch, got n_min {list(self.n_min)} for n_max "
                        f"{[m.n for m in self.missions]}")  # fmt: skip
-        bad_values = [(k, v) for k, v in self.values
-                      if not (_is_real(v) and np.isfinite(v) and v >= 0)]  # fmt: skip
-        if bad_values:
-            yield f"values must be numbers >= 0, got {bad_values[:5]}"
-        if self.must_remove:
-            yield "must_remove is for objective = 'min-dv' (max-value chooses what to remove)"
 
     def fewest(self, k: int) -> int:
         """The fewest debris mission ``k`` (0-based) removes."""
@@ -217,7 +225,8 @@ class Campaign:
             Every mission's parameters (default ``Mission()``).
         n, tmax_days : int / float, or a sequence with one per launch, optional
             Debris per mission and duration limit [days]; default ``mission``'s.  With
-            ``objective = "max-value"`` an ``n`` may be a range ``[n_min, n_max]``.
+            An ``n`` may be a range ``[n_min, n_max]`` (``[[n_min, n_max]]``: the same for
+            every launch).
         must_remove : sequence of str
         value_options
             ``objective``, ``dv_budget_mps``, ``values`` (see the class).
@@ -229,6 +238,8 @@ class Campaign:
             if any(len(pair) != 2 for pair in ranges):
                 raise MissionError(f"invalid campaign: n ranges must be [n_min, n_max] pairs, "
                                    f"got {list(n)}")  # fmt: skip
+            if len(ranges) == 1:  # one range for every launch
+                ranges *= len(days)
             value_options = {"n_min": tuple(pair[0] for pair in ranges), **value_options}
             n = [pair[1] for pair in ranges]
         counts = _per_launch("n", n, mission.n, len(days))
@@ -271,6 +282,25 @@ class Campaign:
         of their fewest with ranges)."""
         return sum(self.fewest(k) for k in range(len(self.missions)))
 
+    @property
+    def most_removed(self) -> int:
+        """Debris removed by the whole campaign at most (the sum of the missions' n)."""
+        return sum(m.n for m in self.missions)
+
+    def counts_text(self) -> str:
+        """Each mission's debris, ``n`` or ``n_min-n`` (e.g. ``"5, 4-5"``)."""
+        return ", ".join(str(m.n) if self.fewest(k) == m.n else f"{self.fewest(k)}-{m.n}"
+                         for k, m in enumerate(self.missions))  # fmt: skip
+
+    def required(self, catalog) -> tuple[str, ...]:
+        """The ids some mission must remove: ``must_remove``, or with ``remove_all`` every
+        candidate of ``catalog`` (a Catalog or its ids) that some mission may remove."""
+        if not self.remove_all:
+            return self.must_remove
+        excluded = set.intersection(*(set(m.exclude) for m in self.missions))
+        return tuple(k for k in (str(k) for k in getattr(catalog, "ids", catalog))
+                     if k not in excluded)  # fmt: skip
+
     def check_candidates(self, catalog) -> None:
         """Raise :class:`MissionError` if the campaign cannot fit the catalog.
 
@@ -294,17 +324,22 @@ class Campaign:
                    and all(d in m.exclude for m in self.missions)]  # fmt: skip
         if nowhere:
             problems.append(f"must_remove debris excluded from every mission: {', '.join(nowhere)}")
-        if len(self.must_remove) > self.debris_removed:
+        if len(self.must_remove) > self.most_removed:
             problems.append(
                 f"must_remove names {len(self.must_remove)} debris but the missions remove "
-                f"{self.debris_removed} in all"
+                f"{self.most_removed} at most"
             )
         usable = known - set.intersection(*(set(m.exclude) for m in self.missions))
         if self.debris_removed > len(usable):
             problems.append(
                 f"the missions remove {self.debris_removed} debris in all "
-                f"({' + '.join(str(m.n) for m in self.missions)}) but the catalog has "
-                f"{len(usable)} candidates: each debris is removed once"
+                f"({self.counts_text()}) but the catalog has {len(usable)} candidates: each "
+                "debris is removed once"
+            )
+        elif self.remove_all and len(usable) > self.most_removed:
+            problems.append(
+                f"remove_all: the catalog has {len(usable)} candidates but the missions remove "
+                f"{self.most_removed} at most ({self.counts_text()}): add missions or raise n"
             )
         if problems:
             raise MissionError("; ".join(problems))
@@ -318,7 +353,9 @@ class Campaign:
             "tmax_days": [m.tmax_days for m in self.missions],
             "must_remove": list(self.must_remove),
             "missions": [m.to_dict() for m in self.missions],
-        } | ({} if self.objective == "min-dv" else {
+        } | ({"remove_all": True} if self.remove_all else {}) | (
+            {"n_min": [self.fewest(k) for k in range(len(self.missions))]} if self.n_min
+            else {}) | ({} if self.objective == "min-dv" else {
             "objective": self.objective, "dv_budget_mps": list(self.dv_budget_mps),
             "n_min": [self.fewest(k) for k in range(len(self.missions))],
             "values": dict(self.values)}) | ({} if self.price_per_value_mps is None else {

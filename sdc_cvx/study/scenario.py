@@ -39,9 +39,11 @@ each mission::
     [campaign]
     launch_days = [0.0, 365.25, 730.5]   # or: missions = 3, first_launch_day = 0,
                                          #     period_days = 365.25
-    n = [5, 5, 4]              # per mission, or one number [mission.n]
+    n = [5, 5, 4]              # per mission, or one number [mission.n]; a range
+                               # [n_min, n_max] per mission: between n_min and n_max
     tmax_days = 365.25         # per mission, or one number [mission.tmax_days]
     must_remove = ["43211"]    # removed by some mission [none]
+    remove_all = false         # every candidate removed by some mission [false]
 
 A missing ``[catalog]`` table, or one without ``path``, means the paper's Table 5 bundled
 with the package (which has no epochs: ``catalog.start`` needs a path).  Missing keys keep
@@ -289,14 +291,16 @@ class Scenario:
             data["catalog"]["values_columns"] = list(self.catalog_values_columns)
         if self.campaign is not None:
             campaign = self.campaign.to_dict()
-            data["campaign"] = {key: campaign[key]
-                                for key in ("launch_days", "n", "tmax_days", "must_remove")}
+            data["campaign"] = {key: campaign[key] for key in (
+                "launch_days", "n", "tmax_days", "must_remove") + ("remove_all",) * (
+                "remove_all" in campaign)}  # fmt: skip
+            if "n_min" in campaign:
+                data["campaign"]["n"] = [[low, high] for low, high in zip(
+                    campaign["n_min"], campaign["n"], strict=True)]  # fmt: skip
             if self.campaign.objective != "min-dv":
                 data["campaign"] |= {
                     "objective": campaign["objective"],
-                    "dv_budget_mps": campaign["dv_budget_mps"],
-                    "n": [[low, high] for low, high in zip(campaign["n_min"], campaign["n"],
-                                                          strict=True)]}  # fmt: skip
+                    "dv_budget_mps": campaign["dv_budget_mps"]}  # fmt: skip
                 if "price_per_value_mps" in campaign:
                     data["campaign"]["price_per_value_mps"] = campaign["price_per_value_mps"]
         if "vehicle" in data["mission"]:

@@ -123,7 +123,8 @@ _VEHICLE_KEYS = tuple(f.name for f in dataclasses.fields(Vehicle))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
 _SELECTION_KEYS = tuple(f.name for f in dataclasses.fields(Selection))
 _CAMPAIGN_KEYS = ("launch_days", "missions", "first_launch_day", "period_days", "n", "tmax_days",
-                  "must_remove", "objective", "dv_budget_mps", "price_per_value_mps")  # fmt: skip
+                  "must_remove", "remove_all", "objective", "dv_budget_mps",
+                  "price_per_value_mps")  # fmt: skip
 TABLE_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOLVER_KEYS,
               "selection": _SELECTION_KEYS, "campaign": _CAMPAIGN_KEYS,
               "vehicle": _VEHICLE_KEYS}  # fmt: skip
@@ -142,6 +143,7 @@ _TYPES = {
         "n": object,
         "tmax_days": object,
         "must_remove": tuple[str, ...],
+        "remove_all": bool,
         "objective": str,
         "dv_budget_mps": object,
         "price_per_value_mps": float,
@@ -274,7 +276,8 @@ def _campaign(values: dict, mission: Mission, problems: list[str],
     if len(problems) > before:
         return None
     options = {"n": values.get("n"), "tmax_days": values.get("tmax_days"),
-               "must_remove": values.get("must_remove", ())}  # fmt: skip
+               "must_remove": values.get("must_remove", ()),
+               "remove_all": values.get("remove_all", False)}  # fmt: skip
     if values.get("objective", "min-dv") != "min-dv" or "dv_budget_mps" in values:
         budget = values.get("dv_budget_mps", ())
         options |= {"objective": values.get("objective", "min-dv"),

@@ -46,7 +46,6 @@ def test_a_later_launch_meets_the_raans_of_its_day():
         (dict(launch_days=[0.0, 0.0]), "increase strictly"),
         (dict(launch_days=[-1.0]), r"in \[0, 3652.5\]"),
         (dict(launch_days=[0.0, 365.25], n=[5]), "n has 1 values for 2 launch days"),
-        (dict(launch_days=[0.0], must_remove="35"), "list of debris ids"),
         (dict(launch_days=[0.0], n=[1]), "n must be >= 2"),
         # a mission ending 20 years after the start: launch day + tmax_days past 10 years
         (dict(launch_days=[3652.5], tmax_days=[3652.5]), r"ends by day 7305 .*after 3652.5"),
@@ -92,9 +91,21 @@ def test_the_campaign_table_defaults_to_the_mission_table(tmp_path):
     assert Scenario.load(again) == Scenario.load(path)  # to_toml reads back the same
 
 
+def test_ranges_and_remove_all_read_and_write_back(tmp_path):
+    path = write(tmp_path, "[campaign]\nmissions = 2\nn = [[2, 3], [3, 4]]\nremove_all = true\n")
+    campaign = Scenario.load(path).campaign
+    assert campaign.remove_all and campaign.must_remove == ()
+    assert [m.n for m in campaign.missions] == [3, 4]
+    assert [campaign.fewest(k) for k in range(2)] == [2, 3]
+    assert campaign.counts_text() == "2-3, 3-4"
+    again = write(tmp_path, Scenario.load(path).to_toml(), "again.toml")
+    assert Scenario.load(again) == Scenario.load(path)
+
+
 @pytest.mark.parametrize(
     ("table", "message"),
     [
+        ("launch_days = [0]\nremove_all = 'yes'", "campaign.remove_all"),
         ("launch_days = [0, 'x']", "campaign.launch_days must be a non-empty array of numbers"),
         ("missions = 2\nlaunch_days = [0]", "give launch_days, or missions"),
         ("n = 3", "needs launch_days"),

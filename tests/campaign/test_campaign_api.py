@@ -85,5 +85,27 @@ def test_each_pricing_done_is_said_so_a_long_round_is_never_silent():
     solve_campaign(Catalog.paper_case(), Campaign.yearly(2, Mission(n=2)), workers=1,
                    log=lines.append)  # fmt: skip
     done = [line for line in lines if "pricing:" in line]
-    assert "  pricing: 1 of 2 launches done (mission 1)" in done
-    assert "  pricing: 2 of 2 launches done (mission 2)" in done
+    assert "  pricing: 1 of 2 done (mission 1, n = 2)" in done
+    assert "  pricing: 2 of 2 done (mission 2, n = 2)" in done
+
+
+def test_one_must_remove_id_may_be_a_string_as_for_a_mission():
+    """``Mission(must_include="5")`` is ``("5",)``: a campaign's ``must_remove`` too."""
+    campaign = Campaign.yearly(2, Mission(n=3), must_remove="5")
+    assert campaign.must_remove == ("5",)
+    assert Mission(n=3, must_include="5").must_include == campaign.must_remove
+
+
+def test_a_sweep_says_its_warnings_as_warning_lines(tmp_path):
+    """Issue 28, 1.6 and 3.2: sdc_cvx's own warnings read as the commands' other warning
+    lines, not as Python's ``path:line: UserWarning:`` with a line of source."""
+    (tmp_path / "c.toml").write_text("[mission]\nn = 2\ntmax_days = 100\n\n"
+                                     "[campaign]\nlaunch_days = [0, 365.25]\n")  # fmt: skip
+    (tmp_path / "study.toml").write_text('base = "c.toml"\n[grid]\n"mission.n" = [2]\n')
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "sweep", "study.toml", "--out",
+                           "out"], capture_output=True, text=True, cwd=tmp_path, timeout=300,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    said = [line for line in done.stderr.splitlines() if "[campaign] table" in line]
+    assert len(said) == 1 and said[0].startswith("warning: 1 scenario(s) have a [campaign]")
+    assert "UserWarning" not in done.stderr and "warnings.warn" not in done.stderr

@@ -139,7 +139,7 @@ def test_ctrl_c_before_any_campaign_stops_at_once_and_says_so(tmp_path, catalog)
     command ends as interrupted (exit 130), not as a solver failure."""
     live = tmp_path / "out.log"
     run = start_campaign(tmp_path, catalog, SCENARIO, "--workers", "1")
-    wait_for(run, live, "pricing: 1 of 3 launches done")
+    wait_for(run, live, "pricing: 1 of 3 done")
     run.send_signal(signal.SIGINT)
     _, stderr = run.communicate(timeout=600)
     assert run.returncode == 130, stderr

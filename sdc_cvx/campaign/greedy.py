@@ -1,0 +1,68 @@
+"""The greedy campaign, the baseline a campaign's answer is measured against.
+
+One mission at a time, in launch order: the cheapest mission of the debris the earlier
+missions left, then its debris removed.  Where debris must be removed (``must_remove``,
+``remove_all``), each mission takes as many of those left as it can (a prize on each, so
+the search prefers them), and as many debris as the later missions could not take
+(``n`` within its range).  Greedy is not optimal (``docs/design.md`` §10): an early
+mission can take a debris a later one needed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .pricing import Column, Pricing
+from .result import GreedyCampaign
+
+PRIZE_FACTOR = 10.0
+"""A debris that must be removed is worth this many times the dearest launch alone [m/s]:
+more than any mission's ΔV difference, so the search takes as many as it can."""
+
+
+def greedy_campaign(search, alone: list[Pricing]) -> GreedyCampaign:
+    """The greedy campaign of ``search`` (a :class:`~sdc_cvx.campaign.search._Campaign`),
+    each launch's missions priced alone in ``alone`` (one per launch, its cheapest count).
+
+    Returns
+    -------
+    GreedyCampaign
+        ``dv_mps`` None where a launch found no mission with the debris left, or
+        required debris are left over (``why`` says which).
+    """
+    removed: list[int] = []
+    missions: list[Column] = []
+    required = list(search.must)
+    dearest = max((p.upper_mps for p in alone if np.isfinite(p.upper_mps)), default=1e3)
+    capacity = [launch.mission.n for launch in search.launches]
+    for k, (launch, first) in enumerate(zip(search.launches, alone, strict=True)):
+        if search.out_of_time():  # Ctrl-C or the limit: no greedy campaign, the pool stays
+            return GreedyCampaign(None, tuple(missions), f"{search.limit_reached()} before "
+                                  f"{launch.label()}")  # fmt: skip
+        left = [i for i in required if i not in removed]
+        count = min(max(len(left) - sum(capacity[k + 1:]), search.campaign.fewest(k)),
+                    capacity[k])  # fmt: skip
+        variant = search.variant(k, count)
+        if not removed and not left and first.columns and first.columns[0].debris \
+                and len(first.columns[0].debris) == count:  # fmt: skip
+            result = first  # the first launch alone is greedy's first mission
+        else:
+            options = dict(exclude=removed)
+            if left:  # a prize on each: the gap is then in m/s, not relative to the prizes
+                prices = np.zeros(len(search.catalog))
+                prices[left] = -PRIZE_FACTOR * dearest
+                options |= dict(prices=prices, gap_rel=0.0, tol_mps=search.gap_rel / 2 * dearest)
+            result = search.price_all([(variant, search.unpriced(**options))])[0]
+            search.pool.add(result.columns)
+        if not result.columns:
+            why = "time limit" if result.status == "no_plan" else "no mission flies"
+            after = " with the debris the earlier missions left" if removed else ""
+            search.say(f"  greedy stops at {launch.label()}: {why}{after}")
+            return GreedyCampaign(None, tuple(missions), f"{launch.label()}: {why}{after}")
+        missions.append(result.columns[0])
+        removed += list(result.columns[0].debris)
+    if any(i not in removed for i in required):
+        return GreedyCampaign(None, tuple(missions), "must_remove debris left over")
+    total = float(sum(c.dv_mps for c in missions))
+    search.say(f"  greedy campaign: {total:.2f} m/s")
+    return GreedyCampaign(total, tuple(missions), "")
