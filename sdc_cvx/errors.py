@@ -61,13 +61,16 @@ class CatalogError(InputError):
         self.problems = tuple(problems) or (message,)
 
     @classmethod
-    def collect(cls, source: str, problems: list[str]) -> CatalogError:
-        """Error listing ``problems`` found in ``source``, at most ``MAX_REPORTED`` shown."""
+    def collect(cls, source: str, problems: list[str], advice: str = "") -> CatalogError:
+        """Error listing ``problems`` found in ``source``, at most ``MAX_REPORTED`` shown,
+        then ``advice`` (what to do about them: a line of its own, not a problem)."""
         count = len(problems)
         lines = [f"{count} problem{'s' if count != 1 else ''} in {source}:"]
         lines += [f"  {problem}" for problem in problems[:MAX_REPORTED]]
         if count > MAX_REPORTED:
             lines.append(f"  ... and {count - MAX_REPORTED} more")
+        if advice:
+            lines.append(advice)
         return cls("\n".join(lines), problems)
 
 

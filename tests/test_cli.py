@@ -612,6 +612,33 @@ def test_ctrl_c_while_the_edge_table_is_built_keeps_the_answer(tmp_path):
     assert not (tmp_path / "r.log").exists()
 
 
+SIGINT_DURING_WRITING = """
+import os, signal, sys, time
+import sdc_cvx.report.run_folder as folder
+real = folder.write_run
+def interrupted(*args, **kwargs):  # Ctrl-C arrives while the run folder is written
+    os.kill(os.getpid(), signal.SIGINT)
+    time.sleep(0.5)
+    return real(*args, **kwargs)
+folder.write_run = interrupted
+from sdc_cvx.cli import main
+main(["run", "--n", "3", "--out", "r"])
+"""
+
+
+@pytest.mark.slow
+def test_ctrl_c_while_the_run_folder_is_written_keeps_the_answer(tmp_path):
+    """Issue 28, 1.3: a Ctrl-C while the figures are written lost the optimal answer
+    ('interrupted while writing: nothing written', exit 130); the folder is finished."""
+    done = subprocess.run([sys.executable, "-c", SIGINT_DURING_WRITING], capture_output=True,
+                          text=True, cwd=tmp_path, timeout=300, preexec_fn=as_terminal_job,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "interrupted: finishing the run folder first" in done.stderr
+    assert json.loads((tmp_path / "r" / "solution.json").read_text())["status"] == "optimal"
+    assert (tmp_path / "r" / "orbits.png").is_file() and not (tmp_path / "r.log").exists()
+
+
 @pytest.mark.parametrize("command", [["campaign", str(EXAMPLES / "campaign_gtoc9.toml")],
                                      ["sweep", str(EXAMPLES / "study_tmax_n.toml")]])
 def test_a_bad_scheduler_address_is_refused_before_any_work(tmp_path, command):

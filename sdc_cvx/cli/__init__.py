@@ -14,6 +14,9 @@ Each command imports what it uses when it runs: ``--help`` stays light.
 
 from __future__ import annotations
 
+import warnings
+from pathlib import Path
+
 import click
 
 from .campaign import campaign_command
@@ -41,6 +44,20 @@ __all__ = [
 def main():
     """Plan active debris removal missions (Cerf's method, CVXPY + MILP)."""
     quiet_resource_tracker()
+    warnings.showwarning = _show_warning
+
+
+_PACKAGE = str(Path(__file__).resolve().parents[1])
+_python_show = warnings.showwarning
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """sdc_cvx's own warnings as ``warning: ...`` lines, as the commands say theirs (not
+    Python's ``path:line: UserWarning:`` and the source line); others as Python shows them."""
+    if issubclass(category, UserWarning) and str(filename).startswith(_PACKAGE):
+        click.echo(f"warning: {message}", err=True)
+    else:
+        _python_show(message, category, filename, lineno, file, line)
 
 
 main.add_command(run_command)

@@ -8,6 +8,9 @@ cannot be written, 130 on Ctrl-C (an earlier ``flight/`` is kept whole).
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
+import os
 from pathlib import Path
 
 import click
@@ -29,9 +32,10 @@ def fly_command(run_dir, force_model, quiet):
 
 
 def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
-               stdout: bool = True) -> None:  # fmt: skip
+               stdout: bool = True, after_run: bool = False) -> None:  # fmt: skip
     """Fly every plan of ``folder`` and write its ``flight/`` (exit on failure); the
-    summary on stdout, or on stderr (``stdout=False``: ``run --json`` keeps stdout JSON)."""
+    summary on stdout, or on stderr (``stdout=False``: ``run --json`` keeps stdout JSON).
+    ``after_run``: ``run --fly`` has just written ``folder`` (a Ctrl-C says it is kept)."""
     from ..errors import SdcError
     from ..flight import fly, run_folder_plans
     from ..flight.result import flight_folder_problem
@@ -41,22 +45,42 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
             click.echo(line, err=True)
 
     try:
-        plans = run_folder_plans(folder)
-        for sub, _ in plans:  # before any flight: a folder of the user's is never replaced
-            if (problem := flight_folder_problem(sub)) is not None:
-                fail(problem)
-        for sub, plan in plans:
-            progress(f"flying {sub}: {' -> '.join(plan.catalog.frame['id'])}")
-            flight = fly(plan, force=force_model, progress=progress)
-            flight.save(sub)
-            click.echo(flight.summary(), err=not stdout)
-            click.echo(f"results   {sub / 'flight'}/", err=not stdout)
-            if (said := flight.warning()) is not None:
-                click.echo(f"warning: {said} (flight.json: status {flight.status})", err=True)
+        with _flying(folder):
+            plans = run_folder_plans(folder)
+            for sub, _ in plans:  # before any flight: a folder of the user's is never replaced
+                if (problem := flight_folder_problem(sub)) is not None:
+                    fail(problem)
+            for sub, plan in plans:
+                progress(f"flying {sub}: {' -> '.join(plan.catalog.frame['id'])}")
+                flight = fly(plan, force=force_model, progress=progress)
+                flight.save(sub)
+                click.echo(flight.summary(), err=not stdout)
+                click.echo(f"results   {sub / 'flight'}/", err=not stdout)
+                if (said := flight.warning()) is not None:
+                    click.echo(f"warning: {said} (flight.json: status {flight.status})",
+                               err=True)  # fmt: skip
     except SdcError as err:
         fail(str(err))
     except KeyboardInterrupt:
-        fail("interrupted: the flight folders written so far are kept, the one being "
-             "written is not", INTERRUPTED)  # fmt: skip
+        kept = (f"the run folder {folder} is written, its flight is not (python -m sdc_cvx "
+                f"fly {folder} flies it)" if after_run else "the flight folders written so "
+                "far are kept, the one being written is not")  # fmt: skip
+        fail(f"interrupted while flying: {kept}", INTERRUPTED)
     except OSError as err:
         fail(f"cannot write {folder}/flight: {err.strerror or err}", SOLVER_FAILED)
+
+
+@contextlib.contextmanager
+def _flying(folder: Path):
+    """An exclusive ``flock`` on ``folder`` while it is flown; exit 2 if another ``fly``
+    holds it now (two flights would write the same ``flight/``)."""
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            fail(f"another sdc_cvx fly is flying {folder} now: wait for it to end (two "
+                 "flights would write the same flight/ folder)")  # fmt: skip
+        yield
+    finally:
+        os.close(fd)

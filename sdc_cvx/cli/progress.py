@@ -176,12 +176,17 @@ def quiet_resource_tracker() -> None:
         sys.warnoptions.append(RESOURCE_TRACKER_NOISE)
 
 
+STOPPING = "stopping at the next step with the best plan so far and its gap"
+"""What a first Ctrl-C during a solve does."""
+
+
 @contextlib.contextmanager
-def interruptible(steps: RunProgress, method: str):
+def interruptible(steps: RunProgress, method: str, said: str = STOPPING):
     """Ctrl-C during a solve: the certified search stops at its next step with the best
     plan so far (a second Ctrl-C, or the paper's method, stops at once: nothing written).
+    The same while the run folder is written (``said``: what the first Ctrl-C does).
 
-    Yields the ``stop`` callable of :func:`sdc_cvx.planner.api.solve`.
+    Yields the ``stop`` callable of :func:`sdc_cvx.planner.api.solve` (True once asked).
     """
     asked = threading.Event()
 
@@ -189,8 +194,9 @@ def interruptible(steps: RunProgress, method: str):
         if asked.is_set() or method != "certified":
             raise KeyboardInterrupt
         asked.set()
-        steps.say("interrupted: stopping at the next step with the best plan so far and its "
-                  "gap (Ctrl-C again to stop at once, writing nothing)")  # fmt: skip
+        line = f"interrupted: {said} (Ctrl-C again to stop at once, writing nothing)"
+        steps.say(line, show=False)
+        click.echo(line, err=True)  # always: a Ctrl-C is answered, progress shown or not
 
     if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:  # started to ignore Ctrl-C (a
         yield asked.is_set  # script's background job): it stays ignored, as for sweep

@@ -255,10 +255,15 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
     folder = Path(out_dir) if out_dir else None
     try:
         folder = folder or new_run_folder()
-        write_run(folder, solution, edge_table, scenario_toml=scenario.to_toml(),
-                  catalog=catalog, formats=("png", "svg") if svg else ("png",),
-                  log=steps.log_text())  # fmt: skip
+        with interruptible(steps, "certified", "finishing the run folder first") as stopped:
+            write_run(folder, solution, edge_table, scenario_toml=scenario.to_toml(),
+                      catalog=catalog, formats=("png", "svg") if svg else ("png",),
+                      log=steps.log_text())  # fmt: skip
         steps.discard_live_log()
+        if stopped() and fly_plan:  # the answer is kept; the user asked for no more
+            fly_plan = False
+            click.echo(f"not flown (interrupted): python -m sdc_cvx fly {folder} flies it",
+                       err=True)  # fmt: skip
     except KeyboardInterrupt:
         steps.discard_live_log()
         if out_dir is None and folder is not None:
@@ -293,7 +298,7 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
     if fly_plan and solution.status == RunStatus.OVER_CAPACITY:
         info("not flown: the plan needs more propellant than the vehicle's tank holds")
     elif fly_plan and solution.status.is_solved:
-        fly_folder(folder, force_model, quiet=quiet, stdout=not json_out)
+        fly_folder(folder, force_model, quiet=quiet, stdout=not json_out, after_run=True)
     if solution.status == RunStatus.OVER_CAPACITY:  # written, but never called flyable
         fail(f"{solution.notes[-1]} (run folder {folder})", INFEASIBLE)
     if not solution.status.is_solved or solution.status in unsettled:

@@ -132,7 +132,7 @@ class FlightPlan:
                 scenario = scenario.with_overrides(catalog_start=day0.to_pydatetime())
             catalog = scenario.load_catalog(on_invalid="set aside")
         except SdcError as err:
-            raise FlightError(f"{scenario_file}: {err}") from None
+            raise FlightError(_naming(scenario_file, err)) from None
 
         def rates(debris: Catalog) -> Catalog:  # as the run fitted them, at the plan's day 0
             if not fitted:
@@ -149,7 +149,7 @@ class FlightPlan:
             return cls._build(legs, catalog, plan["tmax_days"], plan["drift_altitude_km"],
                               plan["total_duration_days"], rates=rates)  # fmt: skip
         except CatalogError as err:  # SGP4 cannot fly a debris over the window of its rate
-            raise FlightError(f"{scenario_file}: {err}") from None
+            raise FlightError(_naming(scenario_file, err)) from None
 
     @classmethod
     def _build(cls, legs, catalog: Catalog, tmax_days, bounds, end_day, *,
@@ -238,3 +238,9 @@ def _read_json(path: Path) -> dict:
         raise FlightError(f"{path.parent}: no {path.name}: not a run folder of sdc_cvx") from None
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as err:
         raise FlightError(f"{path}: unreadable ({err})") from None
+
+
+def _naming(path: Path, err: Exception) -> str:
+    """``err``'s message, prefixed with ``path`` unless it names it first already."""
+    text = str(err)
+    return text if text.startswith(str(path)) else f"{path}: {text}"

@@ -123,10 +123,10 @@ def sgp4_raan(catalog: Catalog, days: float) -> tuple[np.ndarray, np.ndarray]:
         middle[k] = minutes.reshape(2, SAMPLES).mean(axis=1)
     if problems:
         shown = ", ".join(f'"{ident}"' for ident in failed)
-        raise CatalogError.collect(catalog.source, [*problems, (
+        raise CatalogError.collect(catalog.source, problems, (
             f"{len(failed)} debris cannot be flown by SGP4 over the {days:g} days of the "
             f"fitted RAAN rates: leave them out ([selection] exclude_ids = [{shown}], "
-            '--exclude-ids) or plan with the J2 rates (raan_rates = "j2")')])  # fmt: skip
+            '--exclude-ids) or plan with the J2 rates (raan_rates = "j2")'))  # fmt: skip
     elapsed_s = (middle[:, 1] - middle[:, 0]) * 60.0
     first_order = raan_rate(catalog.a_m, catalog.e, catalog.inc_rad)  # [rad/s]
     turned = first_order * elapsed_s  # the whole turns between the windows, from Eq. 7

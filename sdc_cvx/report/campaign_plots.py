@@ -199,15 +199,12 @@ def plot_bound(solution) -> Figure:
     if solution.greedy.dv_mps is not None:
         ax.axhline(solution.greedy.dv_mps, color="#444444", linestyle="--", linewidth=1,
                    label=f"greedy {solution.greedy.dv_mps:.1f} m/s")  # fmt: skip
+    greedy = [] if solution.greedy.dv_mps is None else [solution.greedy.dv_mps]
     finite = np.r_[upper[np.isfinite(upper)], lower[np.isfinite(lower)]]
-    if finite.size:
-        span = max(finite.max() - finite.min(), 1.0)
-        top = (
-            finite.max()
-            if solution.greedy.dv_mps is None
-            else max(finite.max(), solution.greedy.dv_mps)
-        )
-        ax.set_ylim(finite.min() - 0.1 * span, top + 0.1 * span)
+    if finite.size:  # every line and marker inside the frame, greedy's too
+        shown = np.r_[finite, greedy]
+        span = max(shown.max() - shown.min(), 1.0)
+        ax.set_ylim(shown.min() - 0.1 * span, shown.max() + 0.1 * span)
     if t.size:  # from the start, the last step's markers inside the frame
         ax.set_xlim(0.0, 1.05 * float(np.nanmax(t)) + 0.5)
     ax.set_xlabel("elapsed [s]")

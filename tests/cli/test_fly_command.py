@@ -79,6 +79,22 @@ def test_a_folder_that_is_not_a_run_folder(tmp_path):
     assert list(empty.iterdir()) == []
 
 
+def test_a_folder_another_fly_is_flying_is_refused(tmp_path):
+    """Two flights of one folder would write the same flight/: the second waits for none."""
+    import fcntl
+    import os
+
+    folder = tmp_path / "run"
+    folder.mkdir()
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)  # as a fly under way holds it
+        assert_refused(cli_process("fly", str(folder)), "another sdc_cvx fly is flying")
+    finally:
+        os.close(fd)
+    assert_refused(cli_process("fly", str(folder)), "not a run folder")  # released: flown
+
+
 def test_a_folder_that_does_not_exist(tmp_path):
     result = cli_process("fly", str(tmp_path / "nowhere"))
     assert result.returncode == 2 and "does not exist" in result.stderr
@@ -102,6 +118,20 @@ def test_a_catalog_without_phases_says_which_column_to_add(tmp_path):
     result = cli_process("fly", str(folder))
     assert_refused(result, str(PAPER_CSV.name), "no position on their orbit", "arglat_deg")
     assert_no_flight(folder)
+
+
+@pytest.mark.slow
+def test_a_missing_catalog_names_the_scenario_file_once(tmp_path):
+    folder = tmp_path / "run"
+    run = cli_process("run", "--catalog", str(PAPER_CSV), "--start", "2021-01-01", "--n", "3",
+                      "--tmax-days", "200", "--out", str(folder), "--quiet")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    scenario = folder / "scenario.toml"
+    scenario.write_text(scenario.read_text(encoding="utf-8").replace(
+        json.dumps(str(PAPER_CSV))[1:-1], "nope/missing.csv"), encoding="utf-8")  # fmt: skip
+    result = cli_process("fly", str(folder))
+    assert_refused(result, "missing.csv", "file not found")
+    assert result.stderr.count("scenario.toml") == 1, result.stderr
 
 
 @pytest.mark.slow

@@ -153,6 +153,8 @@ def test_an_element_set_sgp4_cannot_fly_over_the_window_is_named():
     with pytest.raises(CatalogError, match=r"debris 99001: SGP4 cannot propagate") as caught:
         catalog.with_sgp4_rates(30.0)
     assert "error 6 (" in str(caught.value) and 'raan_rates = "j2"' in str(caught.value)
+    # one debris, one problem: the advice that follows is not counted as another
+    assert str(caught.value).startswith("1 problem in ") and len(caught.value.problems) == 1
     with pytest.raises(ValueError, match="longer than two orbital periods"):
         catalog.with_sgp4_rates(0.05)
 

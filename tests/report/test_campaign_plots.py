@@ -54,3 +54,17 @@ def test_a_missing_glyph_is_said_once_not_once_per_glyph_and_figure(answer, tmp_
         atomic.write_figure(fig, tmp_path / "b.png", "png", 50)
     said = [w for w in caught if "font" in str(w.message)]
     assert len(said) == 1 and "show as boxes" in str(said[0].message)
+
+
+def test_the_bound_figure_keeps_greedy_and_the_plan_in_its_frame(answer):
+    """A plan with no bound yet and greedy far above it: the plan's marker sat half cut on
+    the frame and greedy's line on the other (the span came from plan and bound alone)."""
+    import dataclasses
+
+    from sdc_cvx.report.campaign_plots import plot_bound
+
+    history = ({**answer.history[0], "lower_mps": None, "upper_mps": 821.4},)
+    greedy = dataclasses.replace(answer.greedy, dv_mps=1200.0)
+    fig = plot_bound(dataclasses.replace(answer, history=history, greedy=greedy))
+    low, high = fig.axes[0].get_ylim()
+    assert low < 821.4 - 10.0 and high > 1200.0 + 10.0
