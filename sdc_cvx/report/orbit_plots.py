@@ -202,15 +202,11 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
     ax.plot(
         days, alts, color=_VEHICLE_COLOR, linewidth=1.3, label="vehicle", gid="vehicle", zorder=3
     )
-    last_label = None  # x [days] of the previous leg's label
+    labels = []
     for k, leg in enumerate(solution.legs):
         start, stop = leg.departure_day, leg.departure_day + leg.duration_days
         color = _leg_color(k)
-        # a leg too short to hold its label (e.g. 1e-9 d at a RAAN crossing) would put it
-        # on top of its neighbour's: such a label goes above the line instead of below
         middle = 0.5 * (start + stop)
-        crowded = last_label is not None and abs(middle - last_label) < 0.08 * end
-        last_label = None if crowded else middle
         ax.axvspan(start, stop, color=color, alpha=0.08, linewidth=0, zorder=0)
         ax.plot(  # on the drift orbit: between a low-thrust leg's spirals
             [start + leg.phases.get("spiral_out_days", 0.0),
@@ -225,18 +221,19 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
         # a label near an edge is held inside the frame (not over the tick labels)
         x, ha = ((start, "left") if middle < 0.12 * end else (stop, "right")
                  if middle > 0.88 * end else (middle, "center"))  # fmt: skip
-        ax.annotate(
+        labels.append(ax.annotate(
             f"{_leg_name(leg)}\n{leg.drift_alt_km:.0f} km, {leg.drift_inc_deg:.2f}\u00b0",
             xy=(x, leg.drift_alt_km),
-            xytext=(0, 5) if crowded else (0, -5),
+            xytext=(0, -5),
             textcoords="offset points",
             ha=ha,
-            va="bottom" if crowded else "top",
+            va="top",
             fontsize=_NOTE_SIZE,
             color=color,
             fontweight="bold",
             bbox={"boxstyle": "square,pad=0.1", "facecolor": "white", "alpha": 0.6, "linewidth": 0},
-        )
+        ))  # fmt: skip
+    _apart(fig, labels)
     tmax = solution.mission.tmax_days
     ax.axvline(tmax, color=_LIMIT_COLOR, linestyle=":", linewidth=1.2, zorder=2)
     ax.annotate(
@@ -274,6 +271,29 @@ def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
     )
     ax.grid(True, axis="x", linewidth=0.4, alpha=0.5)
     return fig
+
+
+def _apart(fig: Figure, labels: list) -> None:
+    """Move each leg label, in leg order, to the first place that overlaps no label placed
+    before it: below its drift line, above it, then further below and above in steps of
+    its own height (short legs and drift orbits of nearby altitudes crowded them)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = fig.canvas if hasattr(fig.canvas, "get_renderer") else FigureCanvasAgg(fig)
+    fig.draw_without_rendering()  # the constrained layout first: the axes' final size
+    renderer = canvas.get_renderer()
+    placed = []
+    for label in labels:
+        height = label.get_window_extent(renderer).height * 72.0 / fig.dpi  # [points]
+        for step in range(8):
+            above, level = step % 2 == 1, step // 2
+            offset = 5.0 + 1.1 * height * level
+            label.set_position((0.0, offset if above else -offset))
+            label.set_verticalalignment("bottom" if above else "top")
+            box = label.get_window_extent(renderer)
+            if not any(box.overlaps(other) for other in placed):
+                break
+        placed.append(label.get_window_extent(renderer))
 
 
 def _node_name(node_id: str) -> str:

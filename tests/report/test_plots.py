@@ -308,6 +308,27 @@ def test_zero_length_leg_label_does_not_cover_its_neighbour(solution, catalog):
     assert not first.overlaps(second)
 
 
+def test_no_two_leg_labels_overlap_on_a_crowded_mission(solution, catalog):
+    """GTOC9 with n = 8: short legs whose drift orbits sit a few km apart printed their
+    labels on top of each other; here every leg is 3 days long at one altitude."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    legs, day = [], 0.0
+    for leg in solution.legs:
+        legs.append(dataclasses.replace(leg, departure_day=day, duration_days=3.0,
+                                        drift_alt_km=solution.legs[0].drift_alt_km))  # fmt: skip
+        day += 3.0
+    ax = plot_orbits(dataclasses.replace(solution, legs=tuple(legs)), catalog).axes[0]
+    canvas = FigureCanvasAgg(ax.figure)
+    canvas.draw()
+    boxes = [text.get_window_extent(canvas.get_renderer()) for text in ax.texts
+             if "\u2192" in text.get_text() and "km," in text.get_text()]  # fmt: skip
+    assert len(boxes) == len(legs) >= 4
+    for k, box in enumerate(boxes):
+        for other in boxes[k + 1:]:
+            assert not box.overlaps(other)
+
+
 def test_cost_figure_total_is_the_solution_total_with_operations(solution):
     ops = {"scenario": "vehicle", "per_debris_mps": {"8": 400.0, "2": 500.0}, "total_mps": 900.0}
     other = dataclasses.replace(solution, operations=ops, total_dv_mps=solution.total_dv_mps + 900)
