@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
+from .leg_minima import scanned_minimisers
 from .orbits import MU_EARTH, SECONDS_PER_DAY, circular_a_for_raan_rate, raan_rate
 from .transfer import (
     CLOSED_GAP_RAD,
@@ -46,7 +47,6 @@ from .transfer import (
     NodeOrbits,
     cheapest_transfer,
     duration_window_interval,
-    minimize_on_interval,
     raan_gap,
     transfer_duration,
     transfer_dv,
@@ -56,10 +56,6 @@ if TYPE_CHECKING:  # the models module imports this one
     from .models import TransferModel
 
 TWO_PI = 2.0 * np.pi
-GRID_POINTS = 513
-"""Radii per edge and inclination scanned for the interior local minima of the cost."""
-MAX_MINIMA = 4
-"""Interior local minima kept per edge and inclination (the cost has at most one per piece)."""
 INCLINATION_RULES = ("table3", "free")
 
 
@@ -110,14 +106,8 @@ class LegCosts:
         """
         model = IMPULSIVE if model is None else model
         count = len(origin.a)
-        candidates = np.full((count, 2, 2 + MAX_MINIMA), np.nan)
-        for start in range(0, count, chunk):
-            rows = slice(start, min(count, start + chunk))
-            o, t = origin.take(rows), target.take(rows)
-            for c, inc in enumerate((o.inc, t.inc)):
-                candidates[rows, c] = _possible_minimisers(o, t, inc, a_low, a_high, mu, model)
-            if on_chunk is not None:
-                on_chunk(rows.stop, count)
+        candidates = scanned_minimisers(origin, target, a_low, a_high, mu, model, chunk=chunk,
+                                        on_chunk=on_chunk)  # fmt: skip
         self = cls(origin, target, float(a_low), float(a_high), candidates,
                    np.empty(0), mu, model)  # fmt: skip
         edges = np.arange(count)[:, None, None]
@@ -186,44 +176,6 @@ class LegCosts:
     def special_dates(self, e: int, start: float, stop: float) -> np.ndarray:
         """Dates in [start, stop] [days] a schedule of edge ``e`` may need exactly."""
         return self.model.special_dates(self, e, start, stop)
-
-
-def _possible_minimisers(origin: NodeOrbits, target: NodeOrbits, inc, a_low, a_high, mu, model):
-    """Kinks and interior local minima of one inclination's cost over the band, (M, K)."""
-    grid = np.linspace(a_low, a_high, GRID_POINTS)
-
-    def cost(a):
-        return model.leg_dv(origin.a[:, None], origin.inc[:, None], target.a[:, None],
-                            target.inc[:, None], a, inc[:, None], mu=mu)  # fmt: skip
-
-    values = cost(np.broadcast_to(grid, (len(inc), GRID_POINTS)))
-    local = (values[:, 1:-1] < values[:, :-2]) & (values[:, 1:-1] <= values[:, 2:])
-    out = np.full((len(inc), 2 + MAX_MINIMA), np.nan)
-    kinks = np.stack([origin.a, target.a], axis=1)
-    out[:, :2] = np.where((kinks >= a_low) & (kinks <= a_high), kinks, np.nan)
-    step = grid[1] - grid[0]
-    rows, cols = np.nonzero(local)
-    rank = np.zeros(len(rows), dtype=int)
-    if len(rows):
-        first_of_row = np.r_[True, rows[1:] != rows[:-1]]
-        run = np.cumsum(first_of_row) - 1
-        rank = np.arange(len(rows)) - np.flatnonzero(first_of_row)[run]
-    keep = rank < MAX_MINIMA
-    rows, cols, rank = rows[keep], cols[keep], rank[keep]
-    if len(rows):
-        centre = grid[cols + 1]
-        lo, hi = centre - step, centre + step
-        sub = NodeOrbits(*(np.asarray(f)[rows] for f in origin))
-        sub_t = NodeOrbits(*(np.asarray(f)[rows] for f in target))
-        sub_inc = inc[rows]
-
-        def sub_cost(a):
-            return model.leg_dv(sub.a[:, None], sub.inc[:, None], sub_t.a[:, None],
-                                sub_t.inc[:, None], a, sub_inc[:, None], mu=mu)  # fmt: skip
-
-        a_min, _ = minimize_on_interval(sub_cost, lo, hi, n_grid=9, n_golden=40)
-        out[rows, 2 + rank] = a_min
-    return out
 
 
 def _rates_per_day(orbits: NodeOrbits):

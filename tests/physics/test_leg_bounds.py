@@ -124,3 +124,22 @@ def test_minimum_on_an_interval_matches_a_dense_grid(table):
         assert value >= dense - 2e-3  # 2 m of radius costs at most ~2 mm/s
         assert lo <= argmin <= hi
         assert legs.cost(e, c, argmin) == pytest.approx(value, abs=1e-9)
+
+
+def test_a_table_built_again_reuses_its_scan_and_only_for_the_same_legs(table):
+    """A campaign builds each launch's tables every round: the scan of minimisers (no date
+    in it) is kept; another launch day (other RAANs) shares it, other radii do not."""
+    from sdc_cvx.physics import leg_minima
+
+    orbits, i, j, legs = table
+    later = orbits._replace(raan=orbits.raan + 1.0)  # the same debris at another launch day
+    again = LegCosts.build(later.take(i), later.take(j), A_LOW, A_HIGH)
+    assert again.candidates is legs.candidates and not legs.candidates.flags.writeable
+    leg_minima._TABLES.clear()
+    fresh = LegCosts.build(orbits.take(i), orbits.take(j), A_LOW, A_HIGH)
+    assert fresh.candidates is not legs.candidates
+    np.testing.assert_array_equal(fresh.candidates, legs.candidates)
+    moved = orbits._replace(a=orbits.a + 1e3)
+    other = LegCosts.build(moved.take(i), moved.take(j), A_LOW, A_HIGH)
+    assert other.candidates is not fresh.candidates
+    assert not np.allclose(np.nan_to_num(other.candidates), np.nan_to_num(fresh.candidates))
