@@ -683,3 +683,14 @@ def test_ctrl_c_while_the_cost_tables_are_built_stops_at_once(tmp_path):
     assert time.monotonic() - asked < 10.0
     assert "interrupted before any plan: nothing written" in stderr
     assert not (tmp_path / "r").exists()
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="needs Linux's /proc")
+def test_a_folder_whose_file_system_refuses_writes_is_refused_before_solving(tmp_path):
+    """Issue 28, 2.4: as root, /sys and /proc pass the permission check (os.access) but
+    refuse every new file: a campaign solved for 48 s before it said so."""
+    result = cli_process("campaign", str(EXAMPLES / "campaign_small.toml"), "--out",
+                         "/proc/sdc_cvx_out", cwd=tmp_path, timeout=60)  # fmt: skip
+    assert result.returncode == 2, result.stderr
+    assert "error: --out: cannot create /proc/sdc_cvx_out" in result.stderr
+    assert "Campaign of" not in result.stderr and not result.stdout

@@ -13,6 +13,7 @@ leave the shell in a deleted folder), and so is a name longer than a file system
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 
 RUN_FOLDER_MARKERS = ("solution.json", "run.log", "legs.csv")
@@ -139,4 +140,15 @@ def _out_folder_problem(given: Path, markers, files, kind: str) -> str | None:
     parent = folder.parent if folder.exists() else ancestor
     if not os.access(parent, os.W_OK | os.X_OK):
         return f"cannot create {folder}: {parent} is not writable"
+    return _probe(parent, folder)
+
+
+def _probe(parent: Path, folder: Path) -> str | None:
+    """Why nothing can be made in ``parent`` although its permissions allow it (root in a
+    file system that refuses writes: ``/sys``, ``/proc``), or None: a folder made and
+    removed at once tells."""
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".sdc_probe_", dir=parent))
+    except OSError as err:
+        return f"cannot create {folder}: {parent} refuses new files ({err.strerror or err})"
     return None
