@@ -34,6 +34,45 @@ def test_no_arc_leaves_a_barred_start_even_without_a_plan_in_hand():
     assert np.isfinite(walk)
 
 
+def test_a_network_bounds_again_only_the_arcs_of_cells_split_since_the_last(monkeypatch):
+    """Each round's network kept no bound of the last: 30 % of a low-thrust search's box
+    bounds (the paper case) were of arcs between cells no split had touched."""
+    catalog = Catalog.paper_case()
+    orbits = NodeOrbits.from_elements(catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad)
+    n = len(catalog)
+    nodes = CertifiedNodes(legs=3, ops_days=np.zeros(n), cost_mps=np.zeros(n), first=None,
+                           must_visit=(), excluded=(), tmax_days=365.25, tmin_days=0.0,
+                           rule="table3", j2=1.08263e-3)  # fmt: skip
+    i, j = np.nonzero(~np.eye(n, dtype=bool))
+    legs = LegCosts.build(orbits.take(i), orbits.take(j), A_LOW, A_HIGH)
+    bounded = []
+    real = LegCosts.box_bound
+
+    def counted(self, e, *args, **kwargs):
+        bounded.append(np.size(e))
+        return real(self, e, *args, **kwargs)
+
+    monkeypatch.setattr(LegCosts, "box_bound", counted)
+    alive = np.ones(len(i), dtype=bool)
+    parts = DateCells(n, nodes.ops_days, nodes.tmax_days, 4)
+    first = CellNetwork(nodes, legs, i, j, parts, alive)
+    assert sum(bounded) > 0
+    bounded.clear()
+    again = CellNetwork(nodes, legs, i, j, parts, alive)
+    assert sum(bounded) == 0  # nothing split: every bound kept
+    np.testing.assert_array_equal(again.arcs.cost, first.arcs.cost)
+    parts.split(3, 1)  # debris 3's second cell halved: only arcs into or out of it again
+    touching = sum(4 + 1 for k in range(len(i)) if 3 in (i[k], j[k]))  # starts + cells
+    split = CellNetwork(nodes, legs, i, j, parts, alive)
+    assert 0 < sum(bounded) <= 2 * touching
+    fresh = DateCells(n, nodes.ops_days, nodes.tmax_days, 4)
+    fresh.split(3, 1)
+    monkeypatch.setattr(LegCosts, "box_bound", real)
+    whole = CellNetwork(nodes, legs, i, j, fresh, alive)  # no bound kept: the same arcs
+    np.testing.assert_array_equal(split.arcs.cost, whole.arcs.cost)
+    np.testing.assert_array_equal(split.arcs.tail, whole.arcs.tail)
+
+
 # ------------------------------------------------------- issue 20, item 9: the setup's clock
 def test_the_cost_tables_report_each_chunk_and_can_be_stopped():
     from sdc_cvx import Mission

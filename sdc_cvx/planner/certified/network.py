@@ -110,20 +110,32 @@ def cost_table_clock(search, every_s: float | None = None):
 
 
 class DateCells:
-    """Date cells of every debris, each a sorted list of [lo, hi] with a version counter."""
+    """Date cells of every debris, each a sorted list of [lo, hi], each cell with an id of
+    its own (a cell never changes: a split makes new ones), so that what was derived of a
+    cell (its arcs' bounds) can be kept."""
 
     def __init__(self, n_debris, start, stop, count):
         self.lo = [np.linspace(start[i], stop, count + 1)[:-1] for i in range(n_debris)]
         self.hi = [np.linspace(start[i], stop, count + 1)[1:] for i in range(n_debris)]
+        self.ids = [np.arange(i * count, (i + 1) * count) for i in range(n_debris)]
+        self.next_id = n_debris * count
+        self.arc_bounds = None  # the last network's arc bounds by key (CellNetwork)
 
     def split(self, debris: int, cell: int, pieces: int = 2):
         lo, hi = self.lo[debris][cell], self.hi[debris][cell]
         edges = np.linspace(lo, hi, pieces + 1)
         self.lo[debris] = np.r_[self.lo[debris][:cell], edges[:-1], self.lo[debris][cell + 1 :]]
         self.hi[debris] = np.r_[self.hi[debris][:cell], edges[1:], self.hi[debris][cell + 1 :]]
+        new = np.arange(self.next_id, self.next_id + pieces)
+        self.ids[debris] = np.r_[self.ids[debris][:cell], new, self.ids[debris][cell + 1 :]]
+        self.next_id += pieces
 
     def count(self) -> int:
         return sum(len(c) for c in self.lo)
+
+
+_ID_BITS = 21
+"""Bits of a cell's id (and of an edge's index) in an arc's key."""
 
 
 class CellNetwork:
@@ -131,6 +143,8 @@ class CellNetwork:
 
     def __init__(self, nodes: CertifiedNodes, legs_table: LegCosts, edge_from, edge_to,
                  parts: DateCells, alive_edges, deadline: float = np.inf):  # fmt: skip
+        """An arc between two cells that were not split since the last network over
+        ``parts`` is not bounded again (``parts.arc_bounds``)."""
         n = len(nodes.ops_days)
         self.n_debris = n
         # node ids: starts 0..n-1, then the cells of each debris in order
@@ -156,8 +170,20 @@ class CellNetwork:
         tail = np.concatenate(tails) if tails else np.empty(0, dtype=int)
         head = np.concatenate(heads) if heads else np.empty(0, dtype=int)
         edge = np.concatenate(edges) if edges else np.empty(0, dtype=int)
-        bound = np.empty(len(edge))
-        for part in np.array_split(np.arange(len(edge)), max(1, len(edge) // BOUND_CHUNK)):
+        # an arc's key: its edge and its two cells' ids (a start node: an id of its own)
+        uid = np.r_[np.arange(n), n + np.concatenate(parts.ids)].astype(np.int64)
+        known = parts.arc_bounds
+        if uid.max(initial=0) >= 1 << _ID_BITS or len(edge_from) >= 1 << _ID_BITS:
+            known, keys = None, np.zeros(len(edge), dtype=np.int64)  # too many to key
+        else:
+            keys = (edge.astype(np.int64) << 2 * _ID_BITS) | (uid[tail] << _ID_BITS) | uid[head]
+        bound = np.full(len(edge), np.nan)
+        if known is not None and len(known[0]):
+            where = np.minimum(np.searchsorted(known[0], keys), len(known[0]) - 1)
+            hit = known[0][where] == keys
+            bound[hit] = known[1][where[hit]]
+        todo = np.flatnonzero(np.isnan(bound))
+        for part in np.array_split(todo, max(1, len(todo) // BOUND_CHUNK)):
             if time.perf_counter() >= deadline:
                 raise OutOfTime(f"time limit reached while bounding the {len(edge)} arcs of "
                                  "a network of date cells")  # fmt: skip
@@ -167,6 +193,8 @@ class CellNetwork:
                 self.node_lo[head[part]] - nodes.ops_days[j],
                 self.node_hi[head[part]] - nodes.ops_days[j], rule=nodes.rule, j2=nodes.j2,
                 t_min=nodes.tmin_days)  # fmt: skip
+        order = np.argsort(keys)
+        parts.arc_bounds = (keys[order], bound[order])  # for the next network
         finite = np.isfinite(bound)
         self.edge = edge[finite]
         self.arcs = Arcs(tail[finite], head[finite], edge_from[self.edge], edge_to[self.edge],
