@@ -5,6 +5,7 @@ heartbeat of a silent phase, and Ctrl-C during a solve (:class:`RunProgress`,
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
 import sys
 import threading
@@ -64,7 +65,7 @@ class RunProgress:
         self.started = self._last = self._time()
         self.phase = "reading the catalog"
         self.iterations = 0
-        self._lock = threading.Lock()
+        self._lock = threading.RLock()  # a Ctrl-C's handler may say while say() runs
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._beat, daemon=True)
 
@@ -196,7 +197,10 @@ def interruptible(steps: RunProgress, method: str, said: str = STOPPING):
         asked.set()
         line = f"interrupted: {said} (Ctrl-C again to stop at once, writing nothing)"
         steps.say(line, show=False)
-        click.echo(line, err=True)  # always: a Ctrl-C is answered, progress shown or not
+        # always answered, progress shown or not; by the descriptor, as a handler may run
+        # while the interrupted code holds sys.stderr's lock (click.echo here hung a pool)
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            os.write(sys.stderr.fileno(), (line + "\n").encode())
 
     if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:  # started to ignore Ctrl-C (a
         yield asked.is_set  # script's background job): it stays ignored, as for sweep

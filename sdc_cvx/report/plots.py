@@ -35,6 +35,7 @@ from .cost_plot import plot_cost
 from .iterations_plot import plot_iterations
 from .orbit_plots import plot_orbits, plot_raan, raan_gap_history, vehicle_altitude
 from .plot_common import FIGURE_SIZE, _positions
+from .run_folder import has_history
 
 if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
     from ..solution import Solution
@@ -74,12 +75,6 @@ def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Fig
     if has_history(solution):
         drawn["iterations"] = plot_iterations(solution)
     return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
-
-
-def has_history(solution: Solution) -> bool:
-    """True when the solution holds a search history to draw (a campaign's mission has
-    none: its search is the campaign's, whose ``bound.png`` draws it)."""
-    return bool(solution.iterations or solution.search_trace) or solution.method != "certified"
 
 
 # ---------------------------------------------------------------------- saving

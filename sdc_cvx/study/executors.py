@@ -8,6 +8,7 @@ import contextlib
 import ctypes
 import multiprocessing
 import os
+import signal
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -66,10 +67,19 @@ def _executor(executor, scheduler, workers, pending: int) -> Iterator[cf.Executo
 
 def _terminate(pool: cf.ProcessPoolExecutor) -> None:
     """End the pool's worker processes now (what they were computing is lost: a resumed
-    sweep runs those scenarios again)."""
+    sweep runs those scenarios again), and the fork server they come from: stopped while
+    it still started (its preload takes seconds on a loaded machine), it outlived the
+    command, holding its stderr open, and a caller reading that to its end waited minutes.
+    A later pool starts a new fork server."""
     for process in list((getattr(pool, "_processes", None) or {}).values()):
         with contextlib.suppress(Exception):
             process.terminate()
+    with contextlib.suppress(Exception):
+        from multiprocessing import forkserver
+
+        pid = forkserver._forkserver._forkserver_pid  # no public handle on it
+        if pid is not None:
+            os.kill(pid, signal.SIGKILL)
 
 
 _THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
@@ -89,7 +99,6 @@ _WATCH_SECONDS = 0.5
 
 def _init_worker(sweep_pid: int) -> None:
     """Initializer of the local pool's processes: die with the sweep, one BLAS thread."""
-    import signal
 
     _die_with(sweep_pid)
     _one_thread_per_worker()
@@ -107,7 +116,6 @@ def _die_with(sweep_pid: int) -> None:
     everywhere a daemon thread checks every half second that the sweep's process is
     still there and ends the worker when it is not (``os._exit``).
     """
-    import signal
     import sys
     import threading
     import time
