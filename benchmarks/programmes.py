@@ -50,6 +50,7 @@ def peak_mb() -> float:
 def run_programme(name: str, time_limit: float, workers: int, dask: bool, queue) -> None:
     """Solve one programme as ``campaign`` would, and put its row on ``queue``."""
     from sdc_cvx.campaign.search import solve_campaign
+    from sdc_cvx.errors import SdcError
     from sdc_cvx.study.scenario import Scenario
 
     scenario = Scenario.load(PROGRAMMES[name])
@@ -67,6 +68,10 @@ def run_programme(name: str, time_limit: float, workers: int, dask: bool, queue)
     try:
         solution = solve_campaign(catalog, scenario.campaign, solver=scenario.solver,
                                   time_limit_s=time_limit, **where)  # fmt: skip
+    except SdcError as err:  # no campaign (infeasible, or none found within the limit)
+        queue.put(dict(programme=name, failed=f"{type(err).__name__}: {err}",
+                       seconds=time.perf_counter() - clock, peak_mb=peak_mb()))  # fmt: skip
+        return
     finally:
         if client is not None:
             client.close()
@@ -110,6 +115,10 @@ def main() -> None:
                 print(f"{name:11} {label:10} failed (exit {process.exitcode})", flush=True)
                 continue
             r = queue.get()
+            if "failed" in r:
+                print(f"{name:11} {label:10} {r['failed']} ({r['seconds']:.1f} s, "
+                      f"{r['peak_mb']:.0f} MB)", flush=True)  # fmt: skip
+                continue
             value = "-" if r["value"] is None else f"{r['value']:8.0f}"
             bound = "-" if r["bound"] is None else f"{r['bound']:9.2f}"
             gap = "-" if r["gap"] is None else f"{100 * r['gap']:6.3f}%"
