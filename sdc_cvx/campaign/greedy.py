@@ -43,15 +43,15 @@ def greedy_campaign(search, alone: list[Pricing]) -> GreedyCampaign:
         count = min(max(len(left) - sum(capacity[k + 1:]), search.campaign.fewest(k)),
                     capacity[k])  # fmt: skip
         variant = search.variant(k, count)
-        if not removed and not left and first.columns and first.columns[0].debris \
-                and len(first.columns[0].debris) == count:  # fmt: skip
+        if not removed and not left and first.columns and len(first.columns[0].debris) == count:
             result = first  # the first launch alone is greedy's first mission
         else:
             options = dict(exclude=removed)
             if left:  # a prize on each: the gap is then in m/s, not relative to the prizes
                 prices = np.zeros(len(search.catalog))
                 prices[left] = -PRIZE_FACTOR * dearest
-                options |= dict(prices=prices, gap_rel=0.0, tol_mps=search.gap_rel / 2 * dearest)
+                options |= dict(prices=prices, gap_rel=0.0,
+                                tol_mps=max(search.tol, search.gap_rel / 2 * dearest))
             result = search.price_all([(variant, search.unpriced(**options))])[0]
             search.pool.add(result.columns)
         if not result.columns:
