@@ -224,12 +224,12 @@ class Campaign:
         mission : Mission, optional
             Every mission's parameters (default ``Mission()``).
         n, tmax_days : int / float, or a sequence with one per launch, optional
-            Debris per mission and duration limit [days]; default ``mission``'s.  With
-            An ``n`` may be a range ``[n_min, n_max]`` (``[[n_min, n_max]]``: the same for
+            Debris per mission and duration limit [days]; default ``mission``'s.  An
+            ``n`` may be a range ``[n_min, n_max]`` (``[[n_min, n_max]]``: the same for
             every launch).
         must_remove : sequence of str
         value_options
-            ``objective``, ``dv_budget_mps``, ``values`` (see the class).
+            ``remove_all``, ``objective``, ``dv_budget_mps``, ``values`` (see the class).
         """
         mission = Mission() if mission is None else mission
         days = (launch_days,) if isinstance(launch_days, numbers.Real) else tuple(launch_days)
