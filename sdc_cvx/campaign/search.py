@@ -412,9 +412,9 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     for message in ignored_options(campaign, solver):
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     campaign.check_candidates(catalog)
-    # one pricing per launch and count (a range of n prices each count)
-    tasks = sum(m.n - campaign.fewest(k) + 1 for k, m in enumerate(campaign.missions)) \
-        if campaign.objective == "min-dv" else len(campaign)  # fmt: skip
+    # one pricing per launch and count (a range of n prices each count; max-value
+    # enumerates each count)
+    tasks = sum(m.n - campaign.fewest(k) + 1 for k, m in enumerate(campaign.missions))
     workers = guarded_workers(workers, scheduler, executor, tasks)
     at_once = pricings_at_once(workers, scheduler, executor, tasks)
     if (problem := size_problem(len(catalog), at_once)) is not None:
@@ -422,15 +422,15 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     clock = time.perf_counter()
     deadline = np.inf if time_limit_s is None else clock + time_limit_s
     say = log or (lambda line: None)
-    if campaign.objective != "min-dv" or pareto:
-        from .value import value_campaign  # checks pareto too
-
-        return value_campaign(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
-                              say=say, stop=stop or (lambda: False), clock=clock,
-                              pareto=pareto)  # fmt: skip
     launches = len(campaign)
     inline = executor is None and scheduler is None and (workers == 1 or tasks == 1)
     with PricingRuns(inline, executor, scheduler, workers, tasks, stop, say) as run:
+        if campaign.objective != "min-dv" or pareto:
+            from .value import value_campaign  # checks pareto too
+
+            return value_campaign(catalog, campaign, solver=solver, gap=gap,
+                                  deadline=deadline, say=say, stop=stop or (lambda: False),
+                                  clock=clock, run=run, pareto=pareto)  # fmt: skip
         search = _Campaign(catalog, campaign, solver, gap, deadline, say, run, stop)
         search.at_once = 1 if inline else at_once
         alone = search.launches_alone()

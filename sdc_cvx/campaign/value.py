@@ -41,7 +41,7 @@ from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
 from ..solution import OPTIMAL_GAP_MPS, RunStatus
 from .master import solve_ip
-from .pricing import Column, Launch, mission_solution, price
+from .pricing import Column, Launch, Pricing, mission_solution
 from .result import CampaignSolution, GreedyCampaign
 
 VALUE_TOL = 1e-9
@@ -52,11 +52,14 @@ of their budget)."""
 
 
 def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: SolverOptions,
-                       deadline: float, say, stop) -> tuple[list, list, bool]:  # fmt: skip
+                       deadline: float, say, stop, run) -> tuple[list, list, bool]:  # fmt: skip
     """Every mission of every launch within its budget (columns), the undecided paths, and
     whether the enumeration is complete (no limit stopped it).
 
-    Per (launch, debris set) only the cheapest is kept: the master needs no other.
+    Per (launch, debris set) only the cheapest is kept: the master needs no other.  The
+    launches' searches of one count above their fewest run at once on ``run`` (the
+    campaign's :class:`~sdc_cvx.campaign.pricing_runs.PricingRuns`: this process, a
+    local pool or a Dask cluster).
     """
     columns: dict[tuple, Column] = {}
     undecided: dict[tuple, Column] = {}
@@ -65,17 +68,21 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     # the fewest debris of every launch first: a limit then leaves a campaign to return
     steps = sorted(((n - campaign.fewest(k), k, n) for k, launch in enumerate(launches)
                     for n in range(campaign.fewest(k), launch.mission.n + 1)))  # fmt: skip
-    for _, k, n in steps:
+    done: dict[tuple, Pricing] = {}
+    for extra, k, n in steps:
         launch, budget = launches[k], float(campaign.dv_budget_mps[k])
-        left = deadline - time.perf_counter()
-        if left <= 0 or stop():
-            complete = False
-            break
-        sized = replace(launch, mission=launch.mission.replace(n=n))
-        pricing = price(sized, solver=solver, gap_rel=PATH_GAP_REL,
-                        path_tol_rel=PATH_GAP_REL, ceiling_mps=budget + OPTIMAL_GAP_MPS,
-                        time_limit_s=None if not np.isfinite(left) else left,
-                        stop=stop)  # fmt: skip
+        if (k, n) not in done:  # the first of its count: every launch's at once
+            left = deadline - time.perf_counter()
+            if left <= 0 or stop():
+                complete = False
+                break
+            wave = [(j, m) for e, j, m in steps if e == extra]
+            done |= zip(wave, run([(replace(launches[j], mission=launches[j].mission.replace(
+                n=m)), dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
+                            ceiling_mps=float(campaign.dv_budget_mps[j]) + OPTIMAL_GAP_MPS,
+                            time_limit_s=None if not np.isfinite(left) else left,
+                            sent_at=time.time())) for j, m in wave]), strict=True)  # fmt: skip
+        pricing = done[(k, n)]
         complete &= pricing.complete or pricing.status == "infeasible"
         fits = 0
         for column in pricing.columns:
@@ -119,7 +126,7 @@ def best_value(columns: list, values: np.ndarray, launches: int, debris: int, *,
 
 
 def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
-                    deadline: float, say, stop):  # fmt: skip
+                    deadline: float, say, stop, run):  # fmt: skip
     """The most valuable campaign (see the module docstring).
 
     Returns
@@ -140,7 +147,8 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
     say(f"campaign: the most value, {len(launches)} launches, {len(catalog)} candidates; "
         "every mission within its budget")  # fmt: skip
     columns, undecided, complete = enumerate_missions(launches, campaign, solver=solver,
-                                                      deadline=deadline, say=say, stop=stop)
+                                                      deadline=deadline, say=say, stop=stop,
+                                                      run=run)  # fmt: skip
     price = campaign.price_per_value_mps if campaign.objective == "value-per-dv" else None
     if price is None:
         plan, value = best_value(columns, values, len(launches), len(catalog), solver=solver)
@@ -234,18 +242,18 @@ def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: i
 
 
 def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
-                   deadline: float, say, stop, clock: float,
+                   deadline: float, say, stop, clock: float, run,
                    pareto: int = 0) -> CampaignSolution:  # fmt: skip
     """:func:`solve_max_value` as a :class:`CampaignSolution` (``solve_campaign``'s answer
-    for ``objective = "max-value"``; its pricing runs in this process), with ``pareto``
-    points of :func:`pareto_front` (none: 0)."""
+    for ``objective = "max-value"``; its searches run on ``run``, as a min-dv campaign's
+    pricing does), with ``pareto`` points of :func:`pareto_front` (none: 0)."""
     if not isinstance(pareto, int) or isinstance(pareto, bool) or pareto < 0:
         raise MissionError(f"pareto must be a number of campaigns >= 0, got {pareto!r}")
     if pareto and campaign.objective != "max-value":
         raise MissionError("pareto: value against ΔV needs objective = 'max-value' (with "
                            "each mission's dv_budget_mps)")  # fmt: skip
     found = solve_max_value(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
-                            say=say, stop=stop)  # fmt: skip
+                            say=say, stop=stop, run=run)  # fmt: skip
     front = ()
     if pareto and found["plan"] is not None:
         columns, undecided, values = found["pool"]

@@ -9,6 +9,7 @@ set per launch with no debris twice: the most value, then the least ΔV.
 
 from __future__ import annotations
 
+import concurrent.futures as cf
 from dataclasses import dataclass
 
 import numpy as np
@@ -80,6 +81,25 @@ def test_the_most_valuable_campaign_is_the_brute_forces(case):
             case.launch_days, case.ranges, case.tmax, case.budgets, sol.missions, strict=True):
         assert low <= len(mission.path) <= high and mission.total_dv_mps <= budget + 1e-9
         solver_plan_checked(mission, advanced(case.catalog(), day), tmax, case.rule)
+
+
+def test_the_enumeration_runs_on_the_campaign_executor():
+    """Each launch's searches go to the executor given (a pool or a Dask cluster: issue 27,
+    2 workers faster than 1), one count at a time, with this process's answer."""
+    case = CASES[0].values[0]
+    sent: list[tuple[int, int]] = []
+
+    class Counted(cf.ThreadPoolExecutor):
+        def submit(self, fn, /, *args, **kwargs):
+            sent.append((args[0].index, args[0].mission.n))
+            return super().submit(fn, *args, **kwargs)
+
+    with Counted(max_workers=1) as pool:
+        there = solve_campaign(case.catalog(), case.campaign(), executor=pool)
+    here = solve_campaign(case.catalog(), case.campaign(), workers=1)
+    assert sent == [(0, 2), (1, 2), (0, 3), (1, 3)]
+    assert there.status == here.status and there.value == here.value
+    assert there.total_dv_mps == pytest.approx(here.total_dv_mps)
 
 
 def test_a_budget_no_mission_fits_is_proven_infeasible():
