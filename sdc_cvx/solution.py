@@ -213,6 +213,13 @@ class Solution:
         """Legs as a table (km, deg, days, m/s)."""
         return pd.DataFrame([leg.to_dict() for leg in self.legs])
 
+    @property
+    def has_history(self) -> bool:
+        """True when it holds a search history (``iterations.csv``, ``iterations.png``): a
+        campaign's mission has none, its search is the campaign's (``history.csv``,
+        ``bound.png``)."""
+        return bool(self.iterations or self.search_trace) or self.method != "certified"
+
     def iterations_frame(self) -> pd.DataFrame:
         """Iteration history as a table (the paper's Table 7 and more)."""
         columns = [f.name for f in fields(IterationRecord)]  # also when there is no row

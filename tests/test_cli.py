@@ -692,5 +692,5 @@ def test_a_folder_whose_file_system_refuses_writes_is_refused_before_solving(tmp
     result = cli_process("campaign", str(EXAMPLES / "campaign_small.toml"), "--out",
                          "/proc/sdc_cvx_out", cwd=tmp_path, timeout=60)  # fmt: skip
     assert result.returncode == 2, result.stderr
-    assert "error: --out: cannot create /proc/sdc_cvx_out" in result.stderr
+    assert "error: --out: cannot write the campaign folder /proc/sdc_cvx_out" in result.stderr
     assert "Campaign of" not in result.stderr and not result.stdout

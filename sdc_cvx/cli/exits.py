@@ -8,7 +8,9 @@ campaign, 4 solver failure or a full disk, 130 interrupted (Ctrl-C) with nothing
 from __future__ import annotations
 
 import errno
+import glob
 import os
+import signal
 import sys
 
 import click
@@ -48,7 +50,24 @@ def interrupted_exit(message: str):
     click.echo(f"error: {message}", err=True)
     sys.stdout.flush()
     sys.stderr.flush()
+    _end_children()
     os._exit(INTERRUPTED)
+
+
+def _end_children() -> None:
+    """End this process's children now (Linux: found in ``/proc``): a pool's fork server
+    or resource tracker still starting when the second Ctrl-C came is not yet known to the
+    pool, and would outlive the command with its stderr open (its workers, the fork
+    server's children, die with it)."""
+    me = os.getpid()
+    for stat in glob.glob("/proc/[0-9]*/stat"):
+        try:
+            with open(stat, encoding="ascii", errors="replace") as handle:
+                parent = int(handle.read().rsplit(")", 1)[1].split()[1])
+            if parent == me:
+                os.kill(int(stat.split("/")[2]), signal.SIGKILL)
+        except (OSError, ValueError, IndexError):
+            continue
 
 
 def fail(message: str, code: int = INPUT_ERROR):

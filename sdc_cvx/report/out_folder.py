@@ -140,15 +140,16 @@ def _out_folder_problem(given: Path, markers, files, kind: str) -> str | None:
     parent = folder.parent if folder.exists() else ancestor
     if not os.access(parent, os.W_OK | os.X_OK):
         return f"cannot create {folder}: {parent} is not writable"
-    return _probe(parent, folder)
+    return _probe(parent, folder, kind)
 
 
-def _probe(parent: Path, folder: Path) -> str | None:
+def _probe(parent: Path, folder: Path, kind: str) -> str | None:
     """Why nothing can be made in ``parent`` although its permissions allow it (root in a
     file system that refuses writes: ``/sys``, ``/proc``), or None: a folder made and
     removed at once tells."""
     try:
         os.rmdir(tempfile.mkdtemp(prefix=".sdc_probe_", dir=parent))
     except OSError as err:
-        return f"cannot create {folder}: {parent} refuses new files ({err.strerror or err})"
+        return (f"cannot write the {kind} {folder}: {parent} refuses new files "
+                f"({err.strerror or err})")  # fmt: skip
     return None

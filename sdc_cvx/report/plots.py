@@ -35,7 +35,6 @@ from .cost_plot import plot_cost
 from .iterations_plot import plot_iterations
 from .orbit_plots import plot_orbits, plot_raan, raan_gap_history, vehicle_altitude
 from .plot_common import FIGURE_SIZE, _positions
-from .run_folder import has_history
 
 if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
     from ..solution import Solution
@@ -72,7 +71,7 @@ def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Fig
         drawn["orbits"] = plot_orbits(solution, catalog)
         drawn["raan"] = plot_raan(solution, catalog)
     drawn["cost"] = plot_cost(solution)
-    if has_history(solution):
+    if solution.has_history:
         drawn["iterations"] = plot_iterations(solution)
     return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
 
@@ -111,7 +110,7 @@ def save_figures(
     -------
     list of Path
         The files written, figure by figure, format by format (``iterations`` only with
-        a history to draw: :func:`has_history`).
+        a history to draw: ``Solution.has_history``).
 
     Raises
     ------
@@ -136,7 +135,7 @@ def save_figures(
         "cost": lambda: plot_cost(solution),
         "iterations": lambda: plot_iterations(solution),
     }
-    if not has_history(solution):
+    if not solution.has_history:
         del builders["iterations"]
     written = []
     for name in builders:

@@ -183,13 +183,6 @@ def legs_table(solution: Solution) -> pd.DataFrame:
     return frame
 
 
-def has_history(solution: Solution) -> bool:
-    """True when the solution holds a search history (``iterations.csv``, ``iterations.png``):
-    a campaign's mission has none, its search is the campaign's (``history.csv``,
-    ``bound.png``)."""
-    return bool(solution.iterations or solution.search_trace) or solution.method != "certified"
-
-
 def iterations_table(solution: Solution) -> pd.DataFrame:
     """``iterations.csv``: the iterations, with ``step`` saying what became of each (for a
     certified search without relaxation rounds, its bound and plan at each change).
@@ -323,7 +316,7 @@ def write_staged(folder: Path | str, fill: Callable[[Path], list[str]], *,
 def _write_files(stage, *, solution, edges, scenario_toml, catalog, formats, log,
                  title=None) -> list[str]:  # fmt: skip
     files = {"legs.csv": legs_table(solution).to_csv(index=False, float_format=CSV_FLOAT_FORMAT)}
-    if has_history(solution):
+    if solution.has_history:
         files["iterations.csv"] = iterations_table(solution).to_csv(
             index=False, float_format=CSV_FLOAT_FORMAT)  # fmt: skip
     if edges is not None:

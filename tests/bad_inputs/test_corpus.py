@@ -288,7 +288,7 @@ CASES: dict[str, Case] = {
     "out-in-proc": Case(
         {"debris.csv": GOOD_CSV},
         ["run", "--catalog", "{in}/debris.csv", "--n", "2", "--out", "/proc/sdc_cvx_x"],
-        ["--out", "/proc/sdc_cvx_x.log"],
+        ["--out", "/proc/sdc_cvx_x", "/proc"],
         names="/proc/sdc_cvx_x",
     ),
     "out-beside-a-log-of-the-user": Case(
