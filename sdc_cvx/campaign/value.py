@@ -57,9 +57,10 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     whether the enumeration is complete (no limit stopped it).
 
     Per (launch, debris set) only the cheapest is kept: the master needs no other.  The
-    launches' searches of one count above their fewest run at once on ``run`` (the
-    campaign's :class:`~sdc_cvx.campaign.pricing_runs.PricingRuns`: this process, a
-    local pool or a Dask cluster).
+    searches run on ``run`` (the campaign's
+    :class:`~sdc_cvx.campaign.pricing_runs.PricingRuns`: this process, a local pool or a
+    Dask cluster), every launch's at once for each count above its fewest: the fewest
+    first, then one more, and so on.
     """
     columns: dict[tuple, Column] = {}
     undecided: dict[tuple, Column] = {}
@@ -77,11 +78,13 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
                 complete = False
                 break
             wave = [(j, m) for e, j, m in steps if e == extra]
-            done |= zip(wave, run([(replace(launches[j], mission=launches[j].mission.replace(
-                n=m)), dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
-                            ceiling_mps=float(campaign.dv_budget_mps[j]) + OPTIMAL_GAP_MPS,
-                            time_limit_s=None if not np.isfinite(left) else left,
-                            sent_at=time.time())) for j, m in wave]), strict=True)  # fmt: skip
+            tasks = [(replace(launches[j], mission=launches[j].mission.replace(n=m)),
+                      dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
+                           ceiling_mps=float(campaign.dv_budget_mps[j]) + OPTIMAL_GAP_MPS,
+                           time_limit_s=None if not np.isfinite(left) else left,
+                           sent_at=time.time()))  # a task waiting for a worker has less
+                     for j, m in wave]  # fmt: skip
+            done.update(zip(wave, run(tasks), strict=True))
         pricing = done[(k, n)]
         complete &= pricing.complete or pricing.status == "infeasible"
         fits = 0
