@@ -583,6 +583,13 @@ def test_a_named_pipe_beside_out_is_refused_not_read(tmp_path, command):
     assert stat.S_ISFIFO(pipe.stat().st_mode) and not (tmp_path / "r").exists()
 
 
+def interrupted_script(script: str, folder) -> subprocess.CompletedProcess:
+    """``script`` (which sends itself a Ctrl-C) in a real process, as a terminal's job."""
+    return subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          cwd=folder, timeout=300, preexec_fn=as_terminal_job,
+                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+
+
 SIGINT_DURING_EDGES = """
 import os, signal, sys, time
 import sdc_cvx.network.edges as edges
@@ -601,9 +608,7 @@ main(["run", "--n", "3", "--out", "r", "--quiet"])
 def test_ctrl_c_while_the_edge_table_is_built_keeps_the_answer(tmp_path):
     """The search is over and its answer known: a Ctrl-C then (issue 28, 1.3) writes the
     run folder without edges.csv, exit 0, instead of 'Aborted!' and nothing."""
-    done = subprocess.run([sys.executable, "-c", SIGINT_DURING_EDGES], capture_output=True,
-                          text=True, cwd=tmp_path, timeout=300, preexec_fn=as_terminal_job,
-                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    done = interrupted_script(SIGINT_DURING_EDGES, tmp_path)
     assert done.returncode == 0, done.stderr
     data = json.loads((tmp_path / "r" / "solution.json").read_text())
     assert data["status"] == "optimal"
@@ -630,9 +635,7 @@ main(["run", "--n", "3", "--out", "r"])
 def test_ctrl_c_while_the_run_folder_is_written_keeps_the_answer(tmp_path):
     """Issue 28, 1.3: a Ctrl-C while the figures are written lost the optimal answer
     ('interrupted while writing: nothing written', exit 130); the folder is finished."""
-    done = subprocess.run([sys.executable, "-c", SIGINT_DURING_WRITING], capture_output=True,
-                          text=True, cwd=tmp_path, timeout=300, preexec_fn=as_terminal_job,
-                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"})  # fmt: skip
+    done = interrupted_script(SIGINT_DURING_WRITING, tmp_path)
     assert done.returncode == 0, done.stderr
     assert "interrupted: finishing the run folder first" in done.stderr
     assert json.loads((tmp_path / "r" / "solution.json").read_text())["status"] == "optimal"

@@ -64,6 +64,15 @@ def paper_run(tmp_path_factory):
     return folder
 
 
+def paper_csv_run(tmp_path):
+    """A run folder of the paper's table as a CSV with a start date (no anomalies)."""
+    folder = tmp_path / "run"
+    run = cli_process("run", "--catalog", str(PAPER_CSV), "--start", "2021-01-01", "--n", "3",
+                      "--tmax-days", "200", "--out", str(folder), "--quiet")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    return folder
+
+
 def copy_of(folder, tmp_path):
     copy = tmp_path / "run"
     shutil.copytree(folder, copy)
@@ -111,10 +120,7 @@ def test_the_paper_case_has_no_dates_to_fly_from(paper_run):
 @pytest.mark.slow
 def test_a_catalog_without_phases_says_which_column_to_add(tmp_path):
     """The paper's table as a CSV with a start date: dates, but no anomalies."""
-    folder = tmp_path / "run"
-    run = cli_process("run", "--catalog", str(PAPER_CSV), "--start", "2021-01-01", "--n", "3",
-                      "--tmax-days", "200", "--out", str(folder), "--quiet")  # fmt: skip
-    assert run.returncode == 0, run.stderr
+    folder = paper_csv_run(tmp_path)
     result = cli_process("fly", str(folder))
     assert_refused(result, str(PAPER_CSV.name), "no position on their orbit", "arglat_deg")
     assert_no_flight(folder)
@@ -122,10 +128,7 @@ def test_a_catalog_without_phases_says_which_column_to_add(tmp_path):
 
 @pytest.mark.slow
 def test_a_missing_catalog_names_the_scenario_file_once(tmp_path):
-    folder = tmp_path / "run"
-    run = cli_process("run", "--catalog", str(PAPER_CSV), "--start", "2021-01-01", "--n", "3",
-                      "--tmax-days", "200", "--out", str(folder), "--quiet")  # fmt: skip
-    assert run.returncode == 0, run.stderr
+    folder = paper_csv_run(tmp_path)
     scenario = folder / "scenario.toml"
     scenario.write_text(scenario.read_text(encoding="utf-8").replace(
         json.dumps(str(PAPER_CSV))[1:-1], "nope/missing.csv"), encoding="utf-8")  # fmt: skip
