@@ -1,13 +1,14 @@
 """An independent brute force of a campaign's optimum, for the campaign's tests.
 
 For each launch, the catalog's RAANs are carried to the launch day here, with the J2
-rate re-derived from the paper (Eq. 7 for the debris' own a, e, I: nothing of
-``Catalog.advanced``); every ordered path of the launch's n debris is then optimised by
-the mission brute force (``tests/planner/bruteforce.py``: a grid over every leg's drift
-orbit with the true physics, each plan replayed).  The best order of each debris set is
-kept per launch, and every choice of one set per launch with no debris twice (and every
-``must_remove`` debris in some set) is enumerated: the cheapest is the campaign's
-optimum, up to the mission brute force's grid error (0.05 m/s per mission).
+rate re-derived from the paper (Eq. 7 for the debris' own a, e, I, from
+``tests/paper_physics.py``: nothing of ``Catalog.advanced`` nor of the package's
+``physics`` layer); every ordered path of the launch's n debris is then optimised by the
+mission brute force (``tests/planner/bruteforce.py``: a grid over every leg's drift orbit
+with the physics of ``tests/paper_physics.py``, each plan replayed).  The best order of
+each debris set is kept per launch, and every choice of one set per launch with no debris
+twice (and every ``must_remove`` debris in some set) is enumerated: the cheapest is the
+campaign's optimum, up to the mission brute force's grid error (0.05 m/s per mission).
 """
 
 from __future__ import annotations
@@ -19,28 +20,17 @@ import numpy as np
 import pandas as pd
 
 from sdc_cvx import Catalog
+from tests.paper_physics import SECONDS_PER_DAY, raan_rate
 from tests.planner.bruteforce import Enumeration
 
-J2 = 1.08263e-3
-MU = 3.986e14
-R_T = 6378137.0
-DAY = 86400.0
 GRID = {2: (2, 2), 3: (1001, 101)}
 """Radii of the middle legs and of their zoom, by n (those of test_certified_property)."""
 
 
 def raan_rate_deg_per_day(a_km, e, inc_deg):
-    """Eq. 7: dOmega/dt = -3/2 J2 sqrt(mu) R_T^2 cos I / (a^3.5 (1 - e^2)^2) [deg/day]."""
+    """Eq. 7: dOmega/dt = -C_J2 cos I / (a^3.5 (1 - e^2)^2), in deg/day (a in km, I in deg)."""
     a = np.asarray(a_km, dtype=float) * 1e3
-    rate = (
-        -1.5
-        * J2
-        * np.sqrt(MU)
-        * R_T**2
-        * np.cos(np.radians(inc_deg))
-        / (a**3.5 * (1.0 - np.asarray(e, dtype=float) ** 2) ** 2)
-    )
-    return np.degrees(rate) * DAY
+    return np.degrees(raan_rate(a, e, np.radians(inc_deg))) * SECONDS_PER_DAY
 
 
 def advanced(catalog: Catalog, days: float) -> Catalog:
@@ -92,7 +82,6 @@ def campaign_optimum(
         if total < value:
             value, sets = total, tuple(chosen)
     return CampaignOptimum(float(value), sets, tuple(per_launch))
-
 
 
 @dataclass(frozen=True)

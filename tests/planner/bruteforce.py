@@ -1,10 +1,11 @@
 """An independent brute force of the mission's optimum, for the solver's tests.
 
 It enumerates every ordered path of n debris and, for each, searches the drift orbits
-of every leg on a radius grid with the true physics (Eq. 7-13 through
-``sdc_cvx.physics.transfer``): no linearisation, no MILP, no date cells, no bounds,
-nothing from the code under test (``sdc_cvx.planner``, ``sdc_cvx.network``,
-``sdc_cvx.solution``, ``sdc_cvx.physics.leg_bounds``).  The model is the solver's: the
+of every leg on a radius grid with the true physics (Eq. 7-13 and Table 3, re-derived from
+the paper in ``tests/paper_physics.py``, which imports nothing of ``sdc_cvx``): no
+linearisation, no MILP, no date cells, no bounds, nothing from the code under test (the
+package's ``physics`` layer included, so that a physics error there is not repeated here;
+only ``sdc_cvx.Catalog`` is used, to read the debris' elements).  The model is the solver's: the
 vehicle is at the first debris at t = 0, each leg leaves as soon as the previous one
 arrives (T_deorb = 0), each drift orbit is circular with a radius in the altitude band
 and the inclination of one of the two debris, and the mission ends (arrival at the last
@@ -47,8 +48,15 @@ from functools import cached_property
 import numpy as np
 
 from sdc_cvx import Catalog
-from sdc_cvx.physics.orbits import R_EARTH, SECONDS_PER_DAY
-from sdc_cvx.physics.transfer import NodeOrbits, drift_inclination, transfer_duration, transfer_dv
+from tests.paper_physics import (
+    R_EARTH,
+    SECONDS_PER_DAY,
+    NodeOrbits,
+    drift_inclination,
+    drift_rate,
+    transfer_duration,
+    transfer_dv,
+)
 
 DAY = SECONDS_PER_DAY
 A_LOW, A_HIGH = R_EARTH + 400e3, R_EARTH + 1200e3  # Mission's default drift altitude band
@@ -61,11 +69,6 @@ RULES = ("table3", "free")
 
 def orbits_of(catalog: Catalog) -> NodeOrbits:
     return NodeOrbits.from_elements(catalog.a_m, catalog.e, catalog.inc_rad, catalog.raan_rad)
-
-
-def drift_rate(a, inc):
-    """J2 RAAN rate [rad/s] of circular drift orbits (Eq. 7 with e = 0)."""
-    return NodeOrbits.from_elements(a, 0.0, inc, 0.0).rate
 
 
 class Candidates:

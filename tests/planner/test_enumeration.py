@@ -2,10 +2,11 @@
 
 The brute force (``tests/planner/bruteforce.py``) enumerates every ordered path of n
 debris and, for each, searches the drift orbits of every leg on a radius grid with the
-true physics (Eq. 7-13 through ``sdc_cvx.physics.transfer``): no linearisation, no MILP,
-no date cells, no bounds, nothing from the code under test (``sdc_cvx.planner``,
-``sdc_cvx.network``, ``sdc_cvx.solution``, ``sdc_cvx.physics.leg_bounds``).  It is
-exact up to its grid, for both drift inclination rules (``Mission.drift_inclination``):
+true physics (Eq. 7-13 and Table 3 re-derived from the paper in ``tests/paper_physics.py``,
+checked against the package's in ``tests/physics/test_paper_physics.py``): no
+linearisation, no MILP, no date cells, no bounds, nothing from the code under test
+(``sdc_cvx.planner``, ``sdc_cvx.network``, ``sdc_cvx.solution``, ``sdc_cvx.physics``).
+It is exact up to its grid, for both drift inclination rules (``Mission.drift_inclination``):
 
 * ``table3``: the drift inclination is Table 3's for the side of the asymptote;
 * ``free``: either debris inclination on either side.
