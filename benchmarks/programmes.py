@@ -7,6 +7,9 @@ The programmes are the example scenarios:
   four or five (``examples/campaign_sl16_all.toml``, min-dv, ``remove_all``);
 - ``sl16-value``: the most McKnight value among those stages, two missions of two to
   four within 250 m/s each (``examples/campaign_sl16_value.toml``, max-value);
+- ``top50``: the most McKnight value among the 50 statistically most concerning derelicts,
+  three yearly missions of two to five within 1 km/s each (``examples/campaign_top50.toml``,
+  max-value; the value bound and its gap are printed beside the ΔV's);
 - ``gtoc9-all``: GTOC9's 123 debris in 25 missions of four or five, one every 117 days
   (``examples/campaign_gtoc9_all.toml``): run with ``--only gtoc9-all``, it is long.
 
@@ -35,6 +38,7 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 PROGRAMMES = {
     "sl16-all": EXAMPLES / "campaign_sl16_all.toml",
     "sl16-value": EXAMPLES / "campaign_sl16_value.toml",
+    "top50": EXAMPLES / "campaign_top50.toml",
     "gtoc9-all": EXAMPLES / "campaign_gtoc9_all.toml",
 }
 DEFAULT = ("sl16-all", "sl16-value")
@@ -79,7 +83,8 @@ def run_programme(name: str, time_limit: float, workers: int, dask: bool, queue)
     seconds = time.perf_counter() - clock
     removed = sum(len(m.path) for m in solution.missions)
     queue.put(dict(programme=name, N=len(catalog), K=len(scenario.campaign), removed=removed,
-                   value=solution.value, dv=solution.total_dv_mps,
+                   value=solution.value, value_bound=solution.value_bound,
+                   dv=solution.total_dv_mps,
                    bound=solution.lower_bound_mps, gap=solution.gap_rel,
                    status=str(solution.status), greedy=solution.greedy.dv_mps,
                    seconds=seconds, peak_mb=peak_mb()))  # fmt: skip
@@ -102,7 +107,7 @@ def main() -> None:
     executors = [(False, w) for w in args.workers] + [(True, w) for w in args.workers] * args.dask
     print(f"{'programme':11} {'executor':10} {'N':>4} {'K':>3} {'removed':>7} {'value':>8} "
           f"{'ΔV':>9} {'bound':>9} {'gap':>7} {'status':>9} {'greedy':>9} {'seconds':>8} "
-          f"{'peak MB':>8}", flush=True)  # fmt: skip
+          f"{'peak MB':>8} {'value bound':>12}", flush=True)  # fmt: skip
     for name in args.only:
         for dask, workers in executors:
             queue = context.Queue()
@@ -123,9 +128,12 @@ def main() -> None:
             bound = "-" if r["bound"] is None else f"{r['bound']:9.2f}"
             gap = "-" if r["gap"] is None else f"{100 * r['gap']:6.3f}%"
             greedy = "-" if r["greedy"] is None else f"{r['greedy']:9.2f}"
+            most = r["value_bound"]
+            most = "-" if most is None else (
+                f"{most:.0f} ({100 * (1 - r['value'] / most):.2f}%)" if most > 0 else f"{most:g}")
             print(f"{name:11} {label:10} {r['N']:4d} {r['K']:3d} {r['removed']:7d} {value:>8} "
                   f"{r['dv']:9.2f} {bound:>9} {gap:>7} {r['status']:>9} {greedy:>9} "
-                  f"{r['seconds']:8.1f} {r['peak_mb']:8.0f}", flush=True)  # fmt: skip
+                  f"{r['seconds']:8.1f} {r['peak_mb']:8.0f} {most:>12}", flush=True)  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -98,7 +98,8 @@ def _rows(columns, n_launches: int, n_debris: int):
     return launch, debris
 
 
-def solve_lp(columns, n_launches: int, n_debris: int, must_remove=()) -> MasterLP:
+def solve_lp(columns, n_launches: int, n_debris: int, must_remove=(), *,
+             costs=None) -> MasterLP:  # fmt: skip
     """The master's LP relaxation over ``columns``, with artificial columns (see above).
 
     Parameters
@@ -107,6 +108,9 @@ def solve_lp(columns, n_launches: int, n_debris: int, must_remove=()) -> MasterL
     n_launches, n_debris : int
     must_remove : sequence of int
         Catalog rows removed exactly once.
+    costs : array_like, optional
+        Cost of each column (default their ΔV [m/s]; a max-value campaign's master
+        minimises minus their value).
 
     Returns
     -------
@@ -119,7 +123,7 @@ def solve_lp(columns, n_launches: int, n_debris: int, must_remove=()) -> MasterL
         convention would be caught here rather than mislead the pricing).
     """
     launch, debris = _rows(columns, n_launches, n_debris)
-    costs = np.array([c.dv_mps for c in columns])
+    costs = np.array([c.dv_mps for c in columns]) if costs is None else np.asarray(costs)
     must = np.zeros(n_debris, dtype=bool)
     must[list(must_remove)] = True
     packed = np.flatnonzero((np.asarray(debris.sum(axis=1)).ravel() > 0) & ~must)

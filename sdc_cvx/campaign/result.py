@@ -159,6 +159,8 @@ class CampaignSolution:
                          f"price x value = {self.total_dv_mps - price * self.value:.2f} m/s")
         elif self.value is not None:
             bound = "not proven" if self.value_bound is None else f"{self.value_bound:g}"
+            if self.value_bound is not None and self.value_bound > self.value * (1 + 1e-9):
+                bound += f": value gap {100 * (1 - self.value / self.value_bound):.2f} %"
             lines.append(f"value     {self.value:g} removed (the most any campaign removes: "
                          f"{bound})")  # fmt: skip
         lines.append(f"total dV  {self.total_dv_mps:.2f} m/s, {self.quality()}")

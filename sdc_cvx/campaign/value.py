@@ -17,9 +17,13 @@ that value, the least ΔV.  The same master over the columns *and* the undecided
 at their bounds, gives the most value any campaign could have and the least ΔV it could
 cost: the answer is ``optimal`` when the two agree within the gap.
 
-The enumeration grows with the number of paths under the budget: this is exact for the
-small and medium catalogs a programme is screened on, and stops at the time limit
-(``feasible``, with what is proven) on larger ones.
+The enumeration grows with the number of paths under the budget: it is exact for the
+small and medium catalogs a programme is screened on.  When it does not end within
+:data:`PLAIN_SHARE` of the time limit (the McKnight top 50 under 1 km/s a mission), rounds
+of column generation on the value (:mod:`~sdc_cvx.campaign.value_bound`) give a bound that
+holds whatever happens next and good campaigns, and the enumeration starts again narrowed
+to the missions that can beat the best of them.  A limit then still leaves the best
+campaign found and the value bound (``feasible``, with its value gap).
 
 References
 ----------
@@ -32,6 +36,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
+from functools import partial
 
 import numpy as np
 
@@ -43,16 +48,24 @@ from ..solution import OPTIMAL_GAP_MPS, RunStatus
 from .master import solve_ip
 from .pricing import Column, Launch, Pricing, mission_solution
 from .result import CampaignSolution, GreedyCampaign
+from .value_bound import counts_of, lagrangian_bound
 
 VALUE_TOL = 1e-9
 """Relative tolerance on a campaign's value when it is held while the ΔV is minimised."""
+PLAIN_SHARE = 0.25
+"""Share of the time limit the plain enumeration (every mission within budget) may take
+before the Lagrangian rounds (:mod:`~sdc_cvx.campaign.value_bound`) take over."""
+BOUND_SHARE = 0.5
+"""Share of the time left then that the Lagrangian rounds may take before the narrowed
+enumeration."""
 PATH_GAP_REL = 1e-4
 """Relative tolerance of each enumerated path's schedule (undecided paths lie within it
 of their budget)."""
 
 
 def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: SolverOptions,
-                       deadline: float, say, stop, run) -> tuple[list, list, bool]:  # fmt: skip
+                       deadline: float, say, stop, run, narrowed=None,
+                       found=()) -> tuple[list, list, bool]:  # fmt: skip
     """Every mission of every launch within its budget (columns), the undecided paths, and
     whether the enumeration is complete (no limit stopped it).
 
@@ -60,31 +73,42 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     searches run on ``run`` (the campaign's
     :class:`~sdc_cvx.campaign.pricing_runs.PricingRuns`: this process, a local pool or a
     Dask cluster), every launch's at once for each count above its fewest: the fewest
-    first, then one more, and so on.
+    first, then one more, and so on.  ``narrowed`` (``{(launch, count): (prices,
+    ceiling)}``, :meth:`~sdc_cvx.campaign.value_bound.ValueBound.narrowing`) enumerates
+    under prices and a ceiling instead: only the missions a campaign worth at least the
+    best found can hold (a count not in it has none).  ``found``: missions within budget
+    found before, kept as columns.
     """
-    columns: dict[tuple, Column] = {}
+    columns: dict[tuple, Column] = {(c.launch, c.debris): c for c in sorted(
+        found, key=lambda c: c.dv_mps, reverse=True)}  # the cheapest order of each set
     undecided: dict[tuple, Column] = {}
-    floor: dict[tuple, float] = {}  # per (launch, set): the least bound of any of its orders
+    # per (launch, set): the least bound of any of its orders the enumeration certified (a
+    # mission found before keeps its own: the rounds certify only the best to TOL_MPS)
+    floor: dict[tuple, float] = {}
     complete = True
     # the fewest debris of every launch first: a limit then leaves a campaign to return
-    steps = sorted(((n - campaign.fewest(k), k, n) for k, launch in enumerate(launches)
-                    for n in range(campaign.fewest(k), launch.mission.n + 1)))  # fmt: skip
+    steps = sorted((n - campaign.fewest(k), k, n) for k, n in counts_of(launches, campaign))
     done: dict[tuple, Pricing] = {}
+    waves: set[int] = set()
     for extra, k, n in steps:
         launch, budget = launches[k], float(campaign.dv_budget_mps[k])
-        if (k, n) not in done:  # the first of its count: every launch's at once
+        if extra not in waves:  # the first of its count: every launch's at once
+            waves.add(extra)
             left = deadline - time.perf_counter()
             if left <= 0 or stop():
                 complete = False
                 break
-            wave = [(j, m) for e, j, m in steps if e == extra]
+            wave = [(j, m) for e, j, m in steps if e == extra
+                    and (narrowed is None or (j, m) in narrowed)]  # fmt: skip
             tasks = [(replace(launches[j], mission=launches[j].mission.replace(n=m)),
                       dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
-                           ceiling_mps=float(campaign.dv_budget_mps[j]) + OPTIMAL_GAP_MPS,
                            time_limit_s=None if not np.isfinite(left) else left,
-                           sent_at=time.time()))  # a task waiting for a worker has less
+                           sent_at=time.time())  # a task waiting for a worker has less
+                      | _under(narrowed, j, m, float(campaign.dv_budget_mps[j])))
                      for j, m in wave]  # fmt: skip
-            done.update(zip(wave, run(tasks), strict=True))
+            done.update(zip(wave, run(tasks), strict=True) if tasks else ())
+        if (k, n) not in done:  # narrowed away: proven to hold no mission that matters
+            done[(k, n)] = Pricing(k, (), np.inf, np.inf, "optimal", 0.0)
         pricing = done[(k, n)]
         complete &= pricing.complete or pricing.status == "infeasible"
         fits = 0
@@ -98,13 +122,33 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
             elif column.lower_mps <= budget and (
                     key not in undecided or column.lower_mps < undecided[key].lower_mps):
                 undecided[key] = column
-        say(f"  {launch.label()}, n = {n}: {fits} missions within {budget:g} m/s "
-            f"({len(pricing.columns)} paths certified)")  # fmt: skip
+        if narrowed is not None and (k, n) not in narrowed:
+            say(f"  {launch.label()}, n = {n}: no mission worth the best campaign (the bound "
+                "proves it)")  # fmt: skip
+        else:
+            say(f"  {launch.label()}, n = {n}: {fits} missions within {budget:g} m/s "
+                f"({len(pricing.columns)} paths certified)")  # fmt: skip
     undecided = {key: c for key, c in undecided.items() if key not in columns}
     # the set kept through its cheapest order, bounded by its least bound of any order
-    columns = {key: replace(c, lower_mps=floor[key]) for key, c in columns.items()}
+    columns = {key: replace(c, lower_mps=floor.get(key, c.lower_mps))
+               for key, c in columns.items()}  # fmt: skip
     undecided = {key: replace(c, lower_mps=floor[key]) for key, c in undecided.items()}
     return list(columns.values()), list(undecided.values()), complete
+
+
+def _under(narrowed, k: int, n: int, budget: float) -> dict:
+    """The enumeration's prices and ceiling of launch ``k`` and count ``n``: every mission
+    within the budget, or the narrowed ones."""
+    prices, ceiling = (None, None) if narrowed is None else narrowed[(k, n)]
+    if prices is None:
+        return dict(ceiling_mps=budget + OPTIMAL_GAP_MPS)
+    return dict(prices=prices, ceiling_mps=ceiling + OPTIMAL_GAP_MPS)
+
+
+def _share(share: float, deadline: float) -> float:
+    """The ``time.perf_counter()`` at which ``share`` of the time to ``deadline`` is gone."""
+    now = time.perf_counter()
+    return now + share * (deadline - now) if np.isfinite(deadline) else deadline
 
 
 def _worth(columns: list, values: np.ndarray) -> np.ndarray:
@@ -149,10 +193,28 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
     values = campaign.value_of(catalog.ids)
     say(f"campaign: the most value, {len(launches)} launches, {len(catalog)} candidates; "
         "every mission within its budget")  # fmt: skip
-    columns, undecided, complete = enumerate_missions(launches, campaign, solver=solver,
-                                                      deadline=deadline, say=say, stop=stop,
-                                                      run=run)  # fmt: skip
     price = campaign.price_per_value_mps if campaign.objective == "value-per-dv" else None
+    enumerate_all = partial(enumerate_missions, launches, campaign, solver=solver, say=say,
+                            stop=stop, run=run)  # fmt: skip
+    upper, priced = np.inf, len(counts_of(launches, campaign))
+    # every mission within budget, if that ends in a share of the time (small programmes)
+    columns, undecided, complete = enumerate_all(
+        deadline=deadline if price is not None else _share(PLAIN_SHARE, deadline))
+    if not complete and price is None and not stop():
+        # a bound and good campaigns first, then the missions that can beat them
+        say("  the enumeration does not end in its share of the time: a value bound and "
+            "campaigns first, then only the missions that can beat them")  # fmt: skip
+        bound = lagrangian_bound(
+            launches, campaign, values, solver=solver, deadline=_share(BOUND_SHARE, deadline),
+            say=say, stop=stop, run=run, best_value=lambda cs: best_value(
+                cs, values, len(launches), len(catalog), solver=solver)[1])  # fmt: skip
+        found, upper = tuple(bound.columns.values()) + tuple(columns), bound.upper
+        priced += (bound.rounds + 1) * len(counts_of(launches, campaign))
+        best = best_value(list(found), values, len(launches), len(catalog), solver=solver)[1]
+        narrowed = bound.narrowing(values, campaign.dv_budget_mps, best) \
+            if np.isfinite(best) else {}  # fmt: skip
+        columns, undecided, complete = enumerate_all(deadline=deadline, found=found,
+                                                     narrowed=narrowed or None)  # fmt: skip
     if price is None:
         plan, value = best_value(columns, values, len(launches), len(catalog), solver=solver)
     else:
@@ -182,6 +244,8 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                                 lows)  # fmt: skip
         value_bound = value  # not what is proven here: the priced objective is
         dv_bound = dv - max((dv - price * value) - floor_plan.value, 0.0)
+    if price is None:  # the Lagrangian bound holds whether the enumeration ended or not
+        value_bound = min(value_bound, upper) if complete else upper
     allowed = max(gap * dv, OPTIMAL_GAP_MPS * len(launches))
     proven = complete and value_bound <= value + VALUE_TOL * max(1.0, value) \
         and dv - dv_bound <= allowed * (1 + 1e-9)  # fmt: skip
@@ -193,7 +257,8 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                      "are undecided: the value bound counts them")  # fmt: skip
     status = RunStatus.OPTIMAL if proven else RunStatus.FEASIBLE
     return dict(plan=chosen, launches=launches, value=value,
-                value_bound=value_bound if complete and price is None else None, dv_mps=dv,
+                value_bound=value_bound if price is None and np.isfinite(value_bound)
+                else None, dv_mps=dv, pricings=priced,
                 dv_bound_mps=dv_bound if complete else None, status=status,
                 columns=len(columns), notes=tuple(notes),
                 pool=(columns, undecided, values))  # fmt: skip
@@ -281,7 +346,6 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         campaign=campaign, catalog=catalog, missions=missions,
         total_dv_mps=found["dv_mps"], lower_bound_mps=found["dv_bound_mps"], status=status,
         greedy=GreedyCampaign(None, why="not computed for objective = 'max-value'"),
-        columns=found["columns"], pricings=sum(
-            campaign.missions[k].n - campaign.fewest(k) + 1 for k in range(len(campaign))),
+        columns=found["columns"], pricings=found["pricings"],
         seconds=time.perf_counter() - clock, notes=found["notes"], gap_requested=gap,
         value=value, value_bound=bound, pareto=front)  # fmt: skip

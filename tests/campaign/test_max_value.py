@@ -16,9 +16,12 @@ import numpy as np
 import pytest
 
 from sdc_cvx import Mission, MissionError, MissionInfeasible
+from sdc_cvx.campaign.pricing import Launch, price
 from sdc_cvx.campaign.search import solve_campaign
+from sdc_cvx.campaign.value_bound import lagrangian_bound
 from sdc_cvx.inputs.campaign import Campaign
 from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.milp.types import SolverOptions
 from sdc_cvx.solution import RunStatus
 from tests.campaign.bruteforce import advanced, value_optimum
 from tests.planner.test_enumeration import solver_plan_checked
@@ -81,6 +84,48 @@ def test_the_most_valuable_campaign_is_the_brute_forces(case):
             case.launch_days, case.ranges, case.tmax, case.budgets, sol.missions, strict=True):
         assert low <= len(mission.path) <= high and mission.total_dv_mps <= budget + 1e-9
         solver_plan_checked(mission, advanced(case.catalog(), day), tmax, case.rule)
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_narrowed_enumeration_finds_the_brute_forces_campaign(case, monkeypatch):
+    """With no share of the time for the plain enumeration, the Lagrangian rounds, then the
+    enumeration narrowed by their bound and prices (every count, not only where that is
+    faster), give the same campaign as the brute force (``campaign/value_bound.py``: the
+    narrowing drops no mission that matters)."""
+    from sdc_cvx.campaign import value, value_bound
+
+    monkeypatch.setattr(value, "PLAIN_SHARE", 0.0)
+    monkeypatch.setattr(value_bound, "NARROW_ONLY_SUBSETS", False)  # every count narrowed
+    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                         case.budgets, case.values(), case.rule)  # fmt: skip
+    lines: list[str] = []
+    sol = solve_campaign(case.catalog(), case.campaign(), workers=1, time_limit_s=3600.0,
+                         log=lines.append)  # fmt: skip
+    assert any("value bound, round 1" in line for line in lines)
+    assert sol.status == RunStatus.OPTIMAL and sol.value == pytest.approx(best.value)
+    assert sol.value_bound == pytest.approx(best.value)
+    assert sol.total_dv_mps <= best.dv_mps * (1 + 1e-3) + 1e-6
+    assert best.dv_mps - len(case.ranges) * GRID_TOL_MPS <= sol.total_dv_mps
+    assert sol.lower_bound_mps <= best.dv_mps + 1e-6
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_lagrangian_bound_is_above_the_brute_forces_optimum(case):
+    """The rounds' bound alone (before any enumeration) is a proof: never below the most
+    value the brute force finds, and every mission they found flies within its budget."""
+    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                         case.budgets, case.values(), case.rule)  # fmt: skip
+    catalog, campaign = case.catalog(), case.campaign()
+    values = campaign.value_of(catalog.ids)
+    run = lambda tasks: [price(launch, **kwargs) for launch, kwargs in tasks]  # noqa: E731
+    bound = lagrangian_bound(Launch.all_of(campaign, catalog), campaign, values,
+                             solver=SolverOptions(), deadline=np.inf, say=lambda _: None,
+                             stop=lambda: False, run=run, best_value=lambda _: -np.inf,
+                             max_rounds=4)  # fmt: skip
+    assert best.value <= bound.upper + 1e-9
+    assert np.isfinite(bound.upper) and bound.rounds >= 1
+    for (k, debris), column in bound.columns.items():
+        assert column.dv_mps <= case.budgets[k] + 1e-9 and len(set(debris)) == len(debris)
 
 
 def test_the_enumeration_runs_on_the_campaign_executor():
@@ -183,19 +228,29 @@ def test_the_campaigns_of_value_against_dv_are_the_brute_forces_front():
         solve_campaign(case.catalog(), Campaign.of([0.0], Mission(n=2)), pareto=3)
 
 
-def test_a_stopped_enumeration_returns_the_campaign_it_has_and_says_nothing_is_proven():
-    """Every launch's fewest debris are enumerated first, so a limit after them still
-    returns a campaign within the budgets: ``feasible``, no value or ΔV bound claimed."""
+def test_a_stopped_enumeration_returns_the_campaign_it_has_and_its_bound(monkeypatch):
+    """A limit during the narrowed enumeration still returns the best campaign found,
+    within the budgets: ``feasible``, no ΔV bound claimed, and the value bound the
+    Lagrangian rounds proved before it (``campaign/value_bound.py``), above the brute
+    force's optimum."""
+    from sdc_cvx.campaign import value
+
+    monkeypatch.setattr(value, "PLAIN_SHARE", 0.0)
     case = CASES[-1].values[0]
     lines: list[str] = []
-    said = "mission 2 (launch day 365.25), n = 2"
+    said = "mission 2 (launch day 365.25), n = 2: "
     sol = solve_campaign(case.catalog(), case.campaign(), workers=1, log=lines.append,
+                         time_limit_s=3600.0,
                          stop=lambda: any(said in line for line in lines))  # fmt: skip
+    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                         case.budgets, case.values(), case.rule)  # fmt: skip
     assert sol.status == RunStatus.FEASIBLE and not sol.certified
-    assert sol.value_bound is None and sol.lower_bound_mps is None
-    assert all(len(m.path) == 2 and m.total_dv_mps <= budget
-               for m, budget in zip(sol.missions, case.budgets, strict=True))  # fmt: skip
-    assert not any("n = 3" in line for line in lines)
+    assert sol.lower_bound_mps is None
+    assert sol.value <= best.value + 1e-9 <= sol.value_bound + 2e-9
+    for mission, (low, high), budget in zip(sol.missions, case.ranges, case.budgets,
+                                            strict=True):  # fmt: skip
+        assert low <= len(mission.path) <= high and mission.total_dv_mps <= budget + 1e-9
+    assert not any("n = 3: " in line for line in lines)  # the enumeration stopped before
 
 
 @pytest.mark.parametrize("price", [2.0, 200.0])  # 18 for 84 m/s; 22 for 577 m/s
