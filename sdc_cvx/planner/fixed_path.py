@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -200,8 +201,9 @@ class _BoundCache:
         self.matrix = np.empty((0, 0))
 
     def update(self, problem: PathProblem, k: int, cells_from: _Cells, cells_to: _Cells,
-               limit: float = np.inf, floor_elsewhere: float = 0.0):  # fmt: skip
-        """The bounds between the cells of positions k and k + 1.
+               limit: float = np.inf, floor_elsewhere: float = 0.0) -> _BoxRequest:  # fmt: skip
+        """The bounds between the cells of positions k and k + 1: the known ones, and the
+        boxes still to bound (:func:`_bound_all` bounds every leg's at once).
 
         A new box's bound may stop once a schedule through it would cost more than
         ``limit``: at ``limit`` less what the cells' ``into`` and ``onward`` bounds (or the
@@ -215,25 +217,51 @@ class _BoundCache:
             rr, cc = np.nonzero(known)
             out[rr, cc] = self.matrix[r_map[rr], c_map[cc]]
         rr, cc = np.nonzero(~known)
-        if len(rr):
-            rest = np.maximum(cells_from.into[rr] + cells_to.onward[cc], floor_elsewhere)
-            with np.errstate(invalid="ignore"):  # inf - inf: no limit yet
-                cap = np.nan_to_num(limit - rest + 1e-6, nan=np.inf)
-            inherited = np.zeros(len(rr))
-            pr = _positions(self.rows, cells_from.parents[rr])
-            pc = _positions(self.cols, cells_to.parents[cc])
-            has = (pr >= 0) & (pc >= 0)
-            inherited[has] = self.matrix[pr[has], pc[has]]
-            todo = np.flatnonzero(inherited < cap)
-            r, c = rr[todo], cc[todo]
-            ops = problem.ops_days[k + 1]
-            inherited[todo] = np.maximum(inherited[todo], problem.legs.box_bound(
-                problem.edges[k], cells_from.lo[r], cells_from.hi[r],
-                cells_to.lo[c] - ops, cells_to.hi[c] - ops, rule=problem.rule,
-                j2=problem.j2, t_min=problem.tmin_days, cap=cap[todo]))  # fmt: skip
-            out[rr, cc] = inherited
+        rest = np.maximum(cells_from.into[rr] + cells_to.onward[cc], floor_elsewhere)
+        with np.errstate(invalid="ignore"):  # inf - inf: no limit yet
+            cap = np.nan_to_num(limit - rest + 1e-6, nan=np.inf)
+        inherited = np.zeros(len(rr))
+        pr = _positions(self.rows, cells_from.parents[rr])
+        pc = _positions(self.cols, cells_to.parents[cc])
+        has = (pr >= 0) & (pc >= 0)
+        inherited[has] = self.matrix[pr[has], pc[has]]
+        out[rr, cc] = inherited
+        todo = np.flatnonzero(inherited < cap)
+        r, c = rr[todo], cc[todo]
+        ops = problem.ops_days[k + 1]
         self.rows, self.cols, self.matrix = cells_from.ids.copy(), cells_to.ids.copy(), out
-        return out
+        return _BoxRequest(out, rr[todo], cc[todo], np.full(len(todo), problem.edges[k]),
+                           (cells_from.lo[r], cells_from.hi[r], cells_to.lo[c] - ops,
+                            cells_to.hi[c] - ops), cap[todo])  # fmt: skip
+
+
+class _BoxRequest(NamedTuple):
+    """One leg's boxes to bound: rows and columns of its bound matrix ``out`` (which
+    holds their parents' bounds so far), their edge, dates and caps."""
+
+    out: np.ndarray
+    rows: np.ndarray
+    cols: np.ndarray
+    edges: np.ndarray
+    dates: tuple
+    cap: np.ndarray
+
+
+def _bound_all(problem: PathProblem, requests: list[_BoxRequest]) -> list[np.ndarray]:
+    """Every leg's bound matrix, the new boxes of all legs bounded in one call (the box
+    bounds are vectorised: one call over all legs costs little more than one over one)."""
+    if sum(len(q.rows) for q in requests):
+        joined = (np.concatenate([q.edges for q in requests]),
+                  *(np.concatenate([q.dates[i] for q in requests]) for i in range(4)))
+        bounds = problem.legs.box_bound(*joined, rule=problem.rule, j2=problem.j2,
+                                        t_min=problem.tmin_days,
+                                        cap=np.concatenate([q.cap for q in requests]))
+        start = 0
+        for q in requests:
+            part = bounds[start:start + len(q.rows)]
+            q.out[q.rows, q.cols] = np.maximum(q.out[q.rows, q.cols], part)
+            start += len(q.rows)
+    return [q.out for q in requests]
 
 
 def _positions(old_ids, ids):
@@ -286,8 +314,9 @@ def solve_path(problem: PathProblem, *, tol_mps: float = 0.01, tol_rel: float = 
     for rounds in range(1, max_rounds + 1):  # noqa: B007 - reported after the loop
         # a box on no schedule under the limit need not have its bound refined past it
         limit = min(best_upper, cutoff_mps)
-        bounds = [caches[k].update(problem, k, cells[k], cells[k + 1], limit,
-                                   floors.sum() - floors[k]) for k in range(L)]  # fmt: skip
+        bounds = _bound_all(problem, [caches[k].update(problem, k, cells[k], cells[k + 1], limit,
+                                                       floors.sum() - floors[k])
+                                      for k in range(L)])  # fmt: skip
         backward = [None] * (L + 1)
         backward[L] = np.zeros(len(cells[L]))
         choice = [None] * L
