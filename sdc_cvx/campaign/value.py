@@ -48,7 +48,7 @@ from ..solution import OPTIMAL_GAP_MPS, RunStatus
 from .master import solve_ip
 from .pricing import Column, Launch, Pricing, mission_solution
 from .result import CampaignSolution, GreedyCampaign
-from .value_bound import counts_of, lagrangian_bound
+from .value_bound import cardinality_narrowing, counts_of, lagrangian_bound
 
 VALUE_TOL = 1e-9
 """Relative tolerance on a campaign's value when it is held while the ΔV is minimised."""
@@ -64,8 +64,8 @@ of their budget)."""
 
 
 def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: SolverOptions,
-                       deadline: float, say, stop, run, narrowed=None,
-                       found=()) -> tuple[list, list, bool]:  # fmt: skip
+                       deadline: float, say, stop, run, narrowed=None, found=(),
+                       exclude=()) -> tuple[list, list, bool]:  # fmt: skip
     """Every mission of every launch within its budget (columns), the undecided paths, and
     whether the enumeration is complete (no limit stopped it).
 
@@ -76,8 +76,10 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     first, then one more, and so on.  ``narrowed`` (``{(launch, count): (prices,
     ceiling)}``, :meth:`~sdc_cvx.campaign.value_bound.ValueBound.narrowing`) enumerates
     under prices and a ceiling instead: only the missions a campaign worth at least the
-    best found can hold (a count not in it has none).  ``found``: missions within budget
-    found before, kept as columns.
+    best found can hold (a count not in it has none), and ``exclude`` leaves out the debris
+    such a campaign cannot hold
+    (:func:`~sdc_cvx.campaign.value_bound.cardinality_narrowing`).  ``found``: missions
+    within budget found before, kept as columns.
     """
     columns: dict[tuple, Column] = {(c.launch, c.debris): c for c in sorted(
         found, key=lambda c: c.dv_mps, reverse=True)}  # the cheapest order of each set
@@ -103,6 +105,7 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
             tasks = [(replace(launches[j], mission=launches[j].mission.replace(n=m)),
                       dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
                            time_limit_s=None if not np.isfinite(left) else left,
+                           exclude=tuple(int(i) for i in exclude),
                            sent_at=time.time())  # a task waiting for a worker has less
                       | _under(narrowed, j, m, float(campaign.dv_budget_mps[j])))
                      for j, m in wave]  # fmt: skip
@@ -208,13 +211,21 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
             launches, campaign, values, solver=solver, deadline=_share(BOUND_SHARE, deadline),
             say=say, stop=stop, run=run, best_value=lambda cs: best_value(
                 cs, values, len(launches), len(catalog), solver=solver)[1])  # fmt: skip
-        found, upper = tuple(bound.columns.values()) + tuple(columns), bound.upper
+        found, upper = tuple(bound.columns.values()) + tuple(columns), bound.proven
         priced += (bound.rounds + 1) * len(counts_of(launches, campaign))
         best = best_value(list(found), values, len(launches), len(catalog), solver=solver)[1]
-        narrowed = bound.narrowing(values, campaign.dv_budget_mps, best) \
-            if np.isfinite(best) else {}  # fmt: skip
+        narrowed, excluded = None, ()
+        if np.isfinite(best):  # what a campaign worth more than it must have
+            excluded, fewest = cardinality_narrowing(
+                values, [launch.mission.n for launch in launches], best)
+            budgets = campaign.dv_budget_mps
+            narrowed = bound.narrowing(values, budgets, best) or {
+                (k, n): (None, budgets[k]) for k, n in counts_of(launches, campaign)}
+            narrowed = {(k, n): how for (k, n), how in narrowed.items() if n >= fewest[k]}
+            say(f"  to beat {best:g}: {len(excluded)} debris ruled out by their value, "
+                f"{len(narrowed)} of {len(counts_of(launches, campaign))} counts left")
         columns, undecided, complete = enumerate_all(deadline=deadline, found=found,
-                                                     narrowed=narrowed or None)  # fmt: skip
+                                                     narrowed=narrowed, exclude=excluded)
     if price is None:
         plan, value = best_value(columns, values, len(launches), len(catalog), solver=solver)
     else:

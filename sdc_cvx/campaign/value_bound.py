@@ -27,6 +27,17 @@ Any ``y >= 0`` and ``mu > 0`` give a valid bound.  The rounds take ``y`` from th
 LP over the missions found (most value) and move each ``mu`` along the subgradient
 ``B_k - ΔV`` of the mission the pricing found best, halving the step when it turns.
 
+A second bound needs no search: a campaign removes at most ``sum_k n_k`` debris, so it is
+worth at most the sum of that many largest ``max(w_i, 0)``.  It is often the better of the
+two on a programme (the Lagrangian bound decomposes by launch and loses that coupling);
+the value bound reported is the least of the two, the narrowing uses ``UB``.  Used the
+other way round (:func:`cardinality_narrowing`), it rules out, for a campaign worth at
+least V, every debris j with ``w+_j <= s_S`` and ``w+_j + T - s_S < V`` (``T`` the sum of
+the ``S = sum_k n_k`` largest, ``s_S`` the S-th: such a campaign holds j and at most S - 1
+others) and every count n of launch k with ``top(n + S - n_k) < V`` (``top(m)``: the sum
+of the m largest): the enumeration leaves those debris out of every search and skips
+those counts.
+
 The enumeration it narrows.  In a campaign worth at least V, mission ``c_k`` has
 ``W(c_k) - y(c_k) >= U_k - (UB - V)`` (the other launches and the prices give at most
 ``UB - U_k``), hence, within budget::
@@ -65,6 +76,9 @@ STALE_ROUNDS = 2
 """Rounds that find no mission and lower the bound by less than :data:`STALE_REL` before
 the rounds stop."""
 STALE_REL = 0.01
+VALUE_SLACK = 1e-8
+"""Relative slack [-] on the value to reach when debris and counts are ruled out by the
+values alone (above the master's value tolerance: nothing it could hold is lost)."""
 NARROW_ONLY_SUBSETS = True
 """Narrow a count by prices only where that is a subset of its plain enumeration (a speed
 rule: the proof holds either way, and the tests run both)."""
@@ -79,7 +93,11 @@ class ValueBound:
     Attributes
     ----------
     upper : float
-        No campaign is worth more (``inf``: no bound yet).
+        No campaign is worth more (``inf``: no bound yet): the Lagrangian bound
+        ``UB`` the narrowing is derived from.
+    most : float
+        The sum of the ``Σ_k n_k`` largest values: no campaign removes more debris
+        than its missions' counts (a bound of its own; :attr:`proven` is the least).
     prices : ndarray
         The prices ``y_i`` of that bound, shape (N,).
     reduced : ndarray
@@ -95,12 +113,18 @@ class ValueBound:
     """
 
     upper: float = np.inf
+    most: float = np.inf
     prices: np.ndarray | None = None
     reduced: np.ndarray | None = None
     multipliers: dict = field(default_factory=dict)
     lowers: dict = field(default_factory=dict)
     columns: dict = field(default_factory=dict)
     rounds: int = 0
+
+    @property
+    def proven(self) -> float:
+        """No campaign is worth more: the least of the two bounds."""
+        return min(self.upper, self.most)
 
     def narrowing(self, values: np.ndarray, budgets, value: float) -> dict:
         """``{(launch, count): (prices, ceiling)}`` under which the enumeration finds every
@@ -123,6 +147,45 @@ class ValueBound:
             subset = widest <= budgets[k] or not NARROW_ONLY_SUBSETS
             narrowed[(k, n)] = (prices if subset else None, ceiling)
         return narrowed
+
+
+def cardinality_narrowing(values: np.ndarray, counts: list[int], value: float):
+    """Debris and counts no campaign worth at least ``value`` can have, from the values
+    alone (the module docstring's second bound, used the other way round).
+
+    With ``S = sum(counts)`` and ``T`` the sum of the ``S`` largest ``w+ = max(w, 0)``
+    (``s_S`` the S-th largest): a campaign holding debris j with ``w_j <= s_S`` is worth at
+    most ``w+_j + T - s_S``; one of m debris at most the sum of the m largest, and launch
+    k flying n debris makes m at most ``n + S - counts[k]``.
+
+    Parameters
+    ----------
+    values : ndarray
+        Value of each catalog row.
+    counts : list of int
+        Each launch's most debris.
+    value : float
+        The value to reach (a campaign in hand).
+
+    Returns
+    -------
+    excluded : ndarray of int
+        Rows no such campaign removes.
+    fewest : list of int
+        Per launch, the fewest debris such a campaign flies on it (0: no limit).
+    """
+    plus = np.maximum(np.asarray(values, dtype=float), 0.0)
+    ranked = np.sort(plus)[::-1]
+    total = sum(counts)
+    if not np.isfinite(value) or total > len(ranked) or total == 0:
+        return np.empty(0, dtype=int), [0] * len(counts)
+    top = np.concatenate([[0.0], np.cumsum(ranked)])  # top[m]: the m largest
+    need = value - VALUE_SLACK * max(1.0, abs(value))
+    last = ranked[total - 1]
+    excluded = np.flatnonzero((plus <= last) & (plus + top[total] - last < need))
+    fewest = [int(np.searchsorted(top, need - 1e-12 * max(1.0, abs(need))))
+              - (total - n) for n in counts]  # fmt: skip
+    return excluded, [max(f, 0) for f in fewest]
 
 
 def counts_of(launches, campaign) -> list[tuple[int, int]]:
@@ -175,7 +238,8 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
     step = dict.fromkeys(counts, FIRST_STEP)
     heading = dict.fromkeys(counts, 0)
     y = np.zeros(len(values))
-    found = ValueBound()
+    found = ValueBound(most=float(np.sort(np.maximum(values, 0.0))[::-1][:sum(
+        launch.mission.n for launch in launches)].sum()))  # fmt: skip
     value, stale = -np.inf, 0
     for round_ in range(max_rounds):
         left = deadline - time.perf_counter()
@@ -215,10 +279,10 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
         columns = list(found.columns.values())
         value = best_value(columns)
         say(f"  value bound, round {round_ + 1}: {len(columns)} missions within budget, best "
-            f"campaign {value:g}, no campaign above {found.upper:g}")  # fmt: skip
+            f"campaign {value:g}, no campaign above {found.proven:g}")  # fmt: skip
         found_none = len(found.columns) == before[0]
         stale = stale + 1 if found_none and found.upper > (1 - STALE_REL) * before[1] else 0
-        if value >= found.upper - gap_rel * max(abs(found.upper), 1e-9) or not columns \
+        if value >= found.proven - gap_rel * max(abs(found.proven), 1e-9) or not columns \
                 or stale >= STALE_ROUNDS:  # fmt: skip
             break
         if {c.launch for c in columns} == set(range(len(launches))):

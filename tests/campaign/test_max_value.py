@@ -122,10 +122,58 @@ def test_the_lagrangian_bound_is_above_the_brute_forces_optimum(case):
                              solver=SolverOptions(), deadline=np.inf, say=lambda _: None,
                              stop=lambda: False, run=run, best_value=lambda _: -np.inf,
                              max_rounds=4)  # fmt: skip
-    assert best.value <= bound.upper + 1e-9
+    assert best.value <= bound.proven + 1e-9 and bound.proven <= bound.upper
+    removable = sum(high for _, high in case.ranges)  # the cardinality bound, by hand
+    assert bound.most == pytest.approx(sum(sorted(values)[-removable:]))
     assert np.isfinite(bound.upper) and bound.rounds >= 1
     for (k, debris), column in bound.columns.items():
         assert column.dv_mps <= case.budgets[k] + 1e-9 and len(set(debris)) == len(debris)
+
+
+def test_debris_and_counts_ruled_out_by_their_value_alone():
+    """Worked by hand: values 10, 8, 6, 1, 0.5, -3 and missions of at most 2 and 1 debris
+    (three in all, worth at most 24).  To reach 20, every campaign needs the three most
+    valuable (10 + 8 = 18 < 20), so a debris worth under 2 is never in one (w + 24 - 6 < 20)
+    and the launches fly 2 and 1; to reach 17, two debris may do (18 >= 17)."""
+    from sdc_cvx.campaign.value_bound import cardinality_narrowing
+
+    values = np.array([10.0, 8.0, 6.0, 1.0, 0.5, -3.0])
+    excluded, fewest = cardinality_narrowing(values, [2, 1], 20.0)
+    assert excluded.tolist() == [3, 4, 5] and fewest == [2, 1]
+    excluded, fewest = cardinality_narrowing(values, [2, 1], 17.0)
+    assert excluded.tolist() == [] and fewest == [1, 0]
+    excluded, fewest = cardinality_narrowing(values, [2, 1], 24.0)  # exactly the top three
+    assert excluded.tolist() == [3, 4, 5] and fewest == [2, 1]
+
+
+def test_when_few_debris_matter_the_value_rules_keep_the_brute_forces_campaign(monkeypatch):
+    """Values that make the debris of a campaign of the most debris the brute force finds
+    worth 50 and every other 1 (or nothing): the best campaign is then worth the most any
+    could be, the values alone rule debris and counts out before the narrowed enumeration,
+    and its answer is still the brute force's with these values."""
+    from sdc_cvx.campaign import value
+    from tests.campaign.bruteforce import campaigns_of, value_options
+
+    case = CASES[-1].values[0]  # its budgets let two missions of three fly
+    options, _ = value_options(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                               case.budgets, case.rule)  # fmt: skip
+    first = max(campaigns_of(options, {}), key=lambda c: (sum(map(len, c[2])), -c[1]))
+    heavy = {d: 50.0 for chosen in first[2] for d in chosen}
+    ids = case.catalog().ids
+    worth = {d: heavy.get(d, 1.0 if k % 2 else 0.0) for k, d in enumerate(ids)}
+    best = max(campaigns_of(options, worth), key=lambda c: (c[0], -c[1]))
+    monkeypatch.setattr(value, "PLAIN_SHARE", 0.0)
+    lines: list[str] = []
+    campaign = Campaign.of(case.launch_days, Mission(drift_inclination=case.rule),
+                           n=[list(r) for r in case.ranges], tmax_days=list(case.tmax),
+                           objective="max-value", dv_budget_mps=list(case.budgets),
+                           values=worth)  # fmt: skip
+    sol = solve_campaign(case.catalog(), campaign, workers=1, time_limit_s=3600.0,
+                         log=lines.append)  # fmt: skip
+    said = [line for line in lines if "ruled out by their value" in line]
+    assert said and not said[0].split(": ")[1].startswith("0 debris"), said
+    assert sol.status == RunStatus.OPTIMAL and sol.value == pytest.approx(best[0])
+    assert sol.total_dv_mps == pytest.approx(best[1], abs=len(case.ranges) * GRID_TOL_MPS)
 
 
 def test_the_enumeration_runs_on_the_campaign_executor():
