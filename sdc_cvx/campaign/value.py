@@ -52,10 +52,10 @@ from .value_bound import cardinality_narrowing, counts_of, lagrangian_bound
 
 VALUE_TOL = 1e-9
 """Relative tolerance on a campaign's value when it is held while the ΔV is minimised."""
-PLAIN_SHARE = 0.25
+PLAIN_SHARE = 0.15
 """Share of the time limit the plain enumeration (every mission within budget) may take
 before the Lagrangian rounds (:mod:`~sdc_cvx.campaign.value_bound`) take over."""
-BOUND_SHARE = 0.5
+BOUND_SHARE = 0.6
 """Share of the time left then that the Lagrangian rounds may take before the narrowed
 enumeration."""
 PATH_GAP_REL = 1e-4
@@ -210,7 +210,8 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         bound = lagrangian_bound(
             launches, campaign, values, solver=solver, deadline=_share(BOUND_SHARE, deadline),
             say=say, stop=stop, run=run, best_value=lambda cs: best_value(
-                cs, values, len(launches), len(catalog), solver=solver)[1])  # fmt: skip
+                cs, values, len(launches), len(catalog), solver=solver)[1],
+            columns=columns)  # fmt: skip
         found, upper = tuple(bound.columns.values()) + tuple(columns), bound.proven
         priced += (bound.rounds + 1) * len(counts_of(launches, campaign))
         best = best_value(list(found), values, len(launches), len(catalog), solver=solver)[1]

@@ -194,6 +194,17 @@ def counts_of(launches, campaign) -> list[tuple[int, int]]:
             for n in range(campaign.fewest(k), launch.mission.n + 1)]  # fmt: skip
 
 
+def _master_prices(columns: list, launches: int, values: np.ndarray, before=None):
+    """Prices ``y`` of the debris: the duals of the LP of the most value over ``columns``
+    (clipped to [0, w]: any y >= 0 bounds, above w_i it only weakens), or ``before`` (zeros)
+    while some launch has no column."""
+    if {c.launch for c in columns} != set(range(launches)):
+        return np.zeros(len(values)) if before is None else before
+    lp = solve_lp(columns, launches, len(values),
+                  costs=-np.array([values[list(c.debris)].sum() for c in columns]))
+    return np.clip(lp.prices, 0.0, values)
+
+
 def _largest(reduced: np.ndarray, n: int) -> float:
     """The sum of the ``n`` largest of ``max(reduced, 0)``: no mission of n debris has
     more reduced value."""
@@ -201,7 +212,7 @@ def _largest(reduced: np.ndarray, n: int) -> float:
 
 
 def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOptions,
-                     deadline: float, say, stop, run, best_value,
+                     deadline: float, say, stop, run, best_value, columns=(),
                      max_rounds: int = 12, gap_rel: float = 1e-3) -> ValueBound:  # fmt: skip
     """Rounds of column generation on the value (see the module docstring).
 
@@ -221,6 +232,8 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
     best_value : callable
         ``best_value(columns) -> value`` of the most valuable campaign they make
         (``-inf``: none).
+    columns : sequence of Column
+        Missions within budget found before (the first prices come from them).
     max_rounds : int
     gap_rel : float
         Stop once the best campaign found is within this of the bound (or after
@@ -237,9 +250,11 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
     mu = {(k, n): max(_largest(values, n), 1e-9) / budgets[k] for k, n in counts}
     step = dict.fromkeys(counts, FIRST_STEP)
     heading = dict.fromkeys(counts, 0)
-    y = np.zeros(len(values))
     found = ValueBound(most=float(np.sort(np.maximum(values, 0.0))[::-1][:sum(
         launch.mission.n for launch in launches)].sum()))  # fmt: skip
+    for column in sorted(columns, key=lambda c: c.dv_mps, reverse=True):
+        found.columns[(column.launch, column.debris)] = column
+    y = _master_prices(list(found.columns.values()), len(launches), values)
     value, stale = -np.inf, 0
     for round_ in range(max_rounds):
         left = deadline - time.perf_counter()
@@ -285,10 +300,7 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
         if value >= found.proven - gap_rel * max(abs(found.proven), 1e-9) or not columns \
                 or stale >= STALE_ROUNDS:  # fmt: skip
             break
-        if {c.launch for c in columns} == set(range(len(launches))):
-            lp = solve_lp(columns, len(launches), len(values),
-                          costs=-np.array([values[list(c.debris)].sum() for c in columns]))
-            y = np.clip(lp.prices, 0.0, values)  # any y >= 0 bounds; above w_i it only weakens
+        y = _master_prices(columns, len(launches), values, y)
         for key in counts:  # along the subgradient: more ΔV than the budget, a dearer ΔV
             mu[key] *= step[key] ** heading[key]
     return found
