@@ -3,8 +3,8 @@ narrow the exact enumeration to the missions that can matter.
 
 :mod:`~sdc_cvx.campaign.value` proves a max-value campaign by enumerating every mission
 within its budget.  On a programme (the 50 most concerning derelicts, 1 km/s a mission)
-that is millions of paths.  Column generation on the value finds a good campaign and a
-bound first, and tells the enumeration which missions it may skip.
+that enumeration does not end in ten minutes.  Column generation on the value finds a
+good campaign and a bound first, and tells the enumeration which missions it may skip.
 
 The bound.  Let ``w_i`` be the value of debris i, ``W(c)`` the value a mission c removes
 and ``y_i >= 0`` any prices on the debris.  A campaign flies one mission ``c_k`` per launch,
@@ -25,7 +25,8 @@ of ``ΔV + sum p_i`` over every mission of the launch (the pricing of a min-dv c
 :func:`~sdc_cvx.campaign.pricing.price`, with these prices: a negative price is a prize).
 Any ``y >= 0`` and ``mu > 0`` give a valid bound.  The rounds take ``y`` from the master
 LP over the missions found (most value) and move each ``mu`` along the subgradient
-``B_k - ΔV`` of the mission the pricing found best, halving the step when it turns.
+``B_k - ΔV`` of the mission the pricing found best (a factor 2 at first, its square root
+each time the direction turns).
 
 A second bound needs no search: a campaign removes at most ``sum_k n_k`` debris, so it is
 worth at most the sum of that many largest ``max(w_i, 0)``.  It is often the better of the
