@@ -86,7 +86,7 @@ def test_the_most_valuable_campaign_is_the_brute_forces(case):
         solver_plan_checked(mission, advanced(case.catalog(), day), tmax, case.rule)
 
 
-@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("case", CASES[1:3])  # the two where the bound rules a count out
 def test_the_narrowed_enumeration_finds_the_brute_forces_campaign(case, monkeypatch):
     """With no share of the time for the plain enumeration, the Lagrangian rounds, then the
     enumeration narrowed by their bound and prices (every count, not only where that is
