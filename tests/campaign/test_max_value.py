@@ -56,13 +56,16 @@ class Case:
 
 CASES = [
     pytest.param(Case("ranges-2-3", 8, 7, (0.0, 365.25), ((2, 3), (2, 3)), (200.0, 200.0),
-                      (300.0, 250.0)), id="ranges-2-3"),
+                      (300.0, 250.0)), id="ranges-2-3",
+                 marks=pytest.mark.slow),
     pytest.param(Case("budget-binds-free", 8, 11, (0.0, 200.0), ((2, 3), (2, 2)),
                       (250.0, 150.0), (260.0, 200.0), rule="free"), id="budget-binds-free"),
     pytest.param(Case("a-mission-of-three", 8, 23, (0.0, 365.25), ((2, 3), (2, 3)),
-                      (300.0, 300.0), (400.0, 250.0)), id="a-mission-of-three"),
+                      (300.0, 300.0), (400.0, 250.0)), id="a-mission-of-three",
+                 marks=pytest.mark.slow),
     pytest.param(Case("two-of-three", 8, 23, (0.0, 365.25), ((2, 3), (2, 3)),
-                      (300.0, 300.0), (550.0, 300.0)), id="two-of-three"),
+                      (300.0, 300.0), (550.0, 300.0)), id="two-of-three",
+                 marks=pytest.mark.slow),
 ]  # fmt: skip
 
 
@@ -146,6 +149,7 @@ def test_debris_and_counts_ruled_out_by_their_value_alone():
     assert excluded.tolist() == [3, 4, 5] and fewest == [2, 1]
 
 
+@pytest.mark.slow
 def test_when_few_debris_matter_the_value_rules_keep_the_brute_forces_campaign(monkeypatch):
     """Values that make the debris of a campaign of the most debris the brute force finds
     worth 50 and every other 1 (or nothing): the best campaign is then worth the most any
@@ -216,6 +220,7 @@ def test_max_value_options_are_checked():
         Campaign.of([0.0], Mission(n=3), dv_budget_mps=100)
 
 
+@pytest.mark.slow
 def test_a_max_value_scenario_runs_from_the_command_line(tmp_path):
     """[catalog] values (a ranking with its own column names) and [campaign] objective,
     n ranges and dv_budget_mps, through a real subprocess: campaign.json says the value,
@@ -252,6 +257,7 @@ def test_a_max_value_scenario_runs_from_the_command_line(tmp_path):
     assert Scenario.load(written).campaign == again.campaign
 
 
+@pytest.mark.slow
 def test_the_campaigns_of_value_against_dv_are_the_brute_forces_front():
     """``pareto``: each campaign is the cheapest of at least its target value (the brute
     force's, to its grid), none dominates another, and the last is the most valuable."""
@@ -276,6 +282,7 @@ def test_the_campaigns_of_value_against_dv_are_the_brute_forces_front():
         solve_campaign(case.catalog(), Campaign.of([0.0], Mission(n=2)), pareto=3)
 
 
+@pytest.mark.slow
 def test_a_stopped_enumeration_returns_the_campaign_it_has_and_its_bound(monkeypatch):
     """A limit during the narrowed enumeration still returns the best campaign found,
     within the budgets: ``feasible``, no ΔV bound claimed, and the value bound the
@@ -301,6 +308,7 @@ def test_a_stopped_enumeration_returns_the_campaign_it_has_and_its_bound(monkeyp
     assert not any("n = 3: " in line for line in lines)  # the enumeration stopped before
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("price", [2.0, 200.0])  # 18 for 84 m/s; 22 for 577 m/s
 def test_value_per_dv_is_the_brute_forces_least_priced_campaign(price):
     """``objective = "value-per-dv"``: the least Σ ΔV − price · Σ value under the same
