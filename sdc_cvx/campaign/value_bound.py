@@ -267,8 +267,8 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
                  for k, n in counts]  # fmt: skip
         reduced = np.full(len(launches), -np.inf)
         lowers, before = {}, (len(found.columns), found.upper)
-        for (k, n), pricing in zip(counts, run(tasks), strict=True):
-            prices = tasks[counts.index((k, n))][1]["prices"]
+        for (k, n), (_, task), pricing in zip(counts, tasks, run(tasks), strict=True):
+            prices = task["prices"]
             for column in pricing.columns:
                 key = (k, column.debris)
                 if column.dv_mps <= budgets[k] and (

@@ -230,7 +230,7 @@ class _BoundCache:
         r, c = rr[todo], cc[todo]
         ops = problem.ops_days[k + 1]
         self.rows, self.cols, self.matrix = cells_from.ids.copy(), cells_to.ids.copy(), out
-        return _BoxRequest(out, rr[todo], cc[todo], np.full(len(todo), problem.edges[k]),
+        return _BoxRequest(out, r, c, np.full(len(todo), problem.edges[k]),
                            (cells_from.lo[r], cells_from.hi[r], cells_to.lo[c] - ops,
                             cells_to.hi[c] - ops), cap[todo])  # fmt: skip
 
