@@ -323,7 +323,8 @@ class Solution:
         ``flight/`` (manoeuvres, rendezvous, CCSDS OEM, figure).  ``force_model``:
         ``"j2"``, ``"j2-j4"`` or ``"j2-j4-drag"``.  Raises
         :class:`sdc_cvx.flight.FlightError` when the plan cannot be flown (a catalog
-        without the debris' positions on their orbits, a low-thrust plan).
+        without the debris' positions on their orbits, a plan from an injection orbit);
+        a low-thrust plan is flown as thrust arcs (:mod:`sdc_cvx.flight.thrust_legs`).
         """
         from .flight import FlightPlan, fly  # scipy, sgp4 and erfa only when asked
 

@@ -2,7 +2,7 @@
 
 Writes ``RUN_DIR/flight/`` (:mod:`sdc_cvx.flight.result`) and prints one line per leg
 and a summary: plan ΔV, flown ΔV, worst miss.  Exit 2 when the plan cannot be flown as
-asked (no phase for a debris, not a run folder, a low-thrust plan), 4 when the folder
+asked (no phase for a debris, not a run folder, an injection orbit), 4 when the folder
 cannot be written, 130 on Ctrl-C (an earlier ``flight/`` is kept whole).
 """
 

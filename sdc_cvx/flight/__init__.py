@@ -5,7 +5,9 @@ debris (SGP4), and CCSDS OEM export.
 run folder) and returns a :class:`Flight`, whose ``save(run_folder)`` writes ``flight/``.
 Modules: :mod:`.plan` (what a flight needs of a plan), :mod:`.frames` (TEME, GCRF, the
 Earth's pole), :mod:`.ephemeris` (the debris by SGP4), :mod:`.propagation` (the vehicle by
-numerical integration), :mod:`.replay` (the flight), :mod:`.result` (its tables and files),
+numerical integration; :mod:`.thrust`, a low-thrust vehicle's thrust arcs; :mod:`.atmosphere`,
+drag's density), :mod:`.replay` (the flight; :mod:`.thrust_legs`, a low-thrust leg's),
+:mod:`.result` (its tables and files),
 :mod:`.oem` (CCSDS OEM), :mod:`.plot` (``flight.png``).  The mean-element physics it
 needs (secular rates, phasing, impulses as vectors) is in :mod:`sdc_cvx.physics`.
 """

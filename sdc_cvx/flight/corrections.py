@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.impulses import rotated_into, with_horizontal_speed
-from .propagation import ForceModel, propagate
+from .propagation import ForceModel, averaged_orbit, propagate
 from .rates import SAMPLES, mean_state, propagated_mean_state
 from .result import Maneuver
 from .track import Track
@@ -37,6 +37,8 @@ SMALLEST_DE = 1e-5
 """Eccentricity differences below this are left alone (0.04 m/s at 800 km)."""
 SMALLEST_GAP_M = 10.0
 """Along-track gaps below this [m] are left to the proximity operations."""
+AIM_SHOTS = 3
+"""One-orbit shots of a circularising impulse on the averaged orbit it aims at."""
 PHASING_REVOLUTIONS = 5
 """Orbits over which the along-track gap left at the arrival is closed (8 h at 800 km)."""
 
@@ -101,6 +103,21 @@ def node_split(da_over_a: float, along_node: float, at_node_sign: float) -> floa
     room = abs(da_over_a)
     de = float(np.clip(along_node, -room, room))
     return 0.25 * (da_over_a + at_node_sign * de)
+
+
+def aim_at(track: Track, model: ForceModel, pole, a_goal, normal) -> np.ndarray:
+    """The velocity in the plane ``normal`` whose orbit averages to ``a_goal`` (its radial
+    part kept: an eccentric drift orbit precesses as a circular one does; the arrival's
+    eccentricity is corrected after it, :func:`correct_eccentricity`)."""
+    r_hat = track.r / np.linalg.norm(track.r)
+    radial = np.dot(track.v, r_hat)
+    speed = np.sqrt(model.mu * (2.0 / np.linalg.norm(track.r) - 1.0 / a_goal) - radial**2)
+    for _ in range(AIM_SHOTS):
+        v_new = with_horizontal_speed(track.r, track.v, normal, speed)
+        averaged = averaged_orbit(track.r, v_new, track.t, model, pole=pole, samples=SAMPLES)
+        # vis-viva: d(a) = 2 a^2 v d(v) / mu
+        speed += (a_goal - averaged.a) * model.mu / (2.0 * averaged.a**2 * speed)
+    return with_horizontal_speed(track.r, track.v, normal, speed)
 
 
 def correct_eccentricity(track: Track, leg: int, wanted, model: ForceModel,

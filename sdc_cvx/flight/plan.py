@@ -63,6 +63,8 @@ class FlightPlan:
         The plan's transfer ΔV [m/s] (its operations at the debris excluded).
     plan_end_day : float
         The plan's mission duration [days].
+    accel_mps2 : float or None
+        A low-thrust plan's thrust acceleration [m/s^2]; None for an impulsive plan.
     """
 
     legs: tuple[PlannedLeg, ...]
@@ -71,10 +73,11 @@ class FlightPlan:
     drift_altitude_km: tuple[float, float]
     plan_dv_mps: float
     plan_end_day: float
+    accel_mps2: float | None = None
 
     @classmethod
     def from_solution(cls, solution) -> FlightPlan:
-        """The plan of a :class:`~sdc_cvx.solution.Solution` (impulsive transfers only)."""
+        """The plan of a :class:`~sdc_cvx.solution.Solution`."""
         _check_transfer(solution.mission.transfer, "this solution")
         _check_start(solution.mission.injection, "this solution")
         if solution.catalog is None:
@@ -85,7 +88,8 @@ class FlightPlan:
                      for leg in solution.legs)  # fmt: skip
         mission = solution.mission
         return cls._build(legs, solution.catalog, mission.tmax_days, mission.drift_altitude_km,
-                          solution.total_duration_days)  # fmt: skip
+                          solution.total_duration_days,
+                          accel=mission.transfer_model().describe().get("accel_mps2"))  # fmt: skip
 
     @classmethod
     def from_run_folder(cls, folder, *, scenario_file=None, campaign_start=None) -> FlightPlan:
@@ -114,8 +118,12 @@ class FlightPlan:
         except SolutionFileError as err:
             raise FlightError(str(err)) from None
         described = data.get("transfer") if isinstance(data.get("transfer"), dict) else {}
-        _check_transfer(plan["mission"].get("transfer", described.get("transfer", "impulsive")),
-                        str(folder))  # fmt: skip
+        transfer = plan["mission"].get("transfer", described.get("transfer", "impulsive"))
+        _check_transfer(transfer, str(folder))
+        accel = described.get("accel_mps2") if transfer == "low-thrust" else None
+        if transfer == "low-thrust" and not (isinstance(accel, (int, float)) and accel > 0):
+            raise FlightError(f"{folder / 'solution.json'}: a low-thrust plan without its "
+                              f"thrust acceleration (transfer.accel_mps2 is {accel!r})")
         _check_start(plan["mission"].get("injection"), str(folder))
         scenario_file = Path(scenario_file or folder / "scenario.toml")
         if not scenario_file.exists():
@@ -147,15 +155,16 @@ class FlightPlan:
                      for leg in plan["legs"])  # fmt: skip
         try:
             return cls._build(legs, catalog, plan["tmax_days"], plan["drift_altitude_km"],
-                              plan["total_duration_days"], rates=rates)  # fmt: skip
+                              plan["total_duration_days"], rates=rates, accel=accel)  # fmt: skip
         except CatalogError as err:  # SGP4 cannot fly a debris over the window of its rate
             raise FlightError(_naming(scenario_file, err)) from None
 
     @classmethod
-    def _build(cls, legs, catalog: Catalog, tmax_days, bounds, end_day, *,
-               rates=None) -> FlightPlan:  # fmt: skip
+    def _build(cls, legs, catalog: Catalog, tmax_days, bounds, end_day, *, rates=None,
+               accel=None) -> FlightPlan:  # fmt: skip
         """The plan over the catalog rows of its path, in path order; ``rates`` (of those
-        rows' catalog): the RAAN rates of the run (:meth:`from_run_folder`)."""
+        rows' catalog): the RAAN rates of the run (:meth:`from_run_folder`); ``accel``: a
+        low-thrust plan's acceleration [m/s^2]."""
         if not legs:
             raise FlightError("the plan has no leg to fly (a mission of one debris)")
         path = [legs[0].from_id] + [leg.to_id for leg in legs]
@@ -173,7 +182,8 @@ class FlightPlan:
         if problem is not None:
             raise FlightError(problem)
         return cls(tuple(legs), subset, float(tmax_days), (float(bounds[0]), float(bounds[1])),
-                   float(sum(leg.dv_mps for leg in legs)), float(end_day))  # fmt: skip
+                   float(sum(leg.dv_mps for leg in legs)), float(end_day),
+                   None if accel is None else float(accel))  # fmt: skip
 
     @property
     def start(self) -> pd.Timestamp:
@@ -207,10 +217,9 @@ def run_folder_plans(folder) -> list[tuple[Path, FlightPlan]]:
 
 
 def _transfer_problem(transfer: str) -> str | None:
-    if transfer == "impulsive":
+    if transfer in ("impulsive", "low-thrust"):
         return None
-    return (f"a {transfer} plan; fly replays impulsive plans only so far (its spirals as "
-            "thrust arcs are not built yet)")
+    return f"a {transfer} plan; fly replays impulsive and low-thrust plans only"
 
 
 def _start_problem(injection) -> str | None:

@@ -19,13 +19,22 @@ FIGURE_SIZE = (9.0, 7.0)
 
 def plan_altitude(flight: Flight) -> tuple[np.ndarray, np.ndarray]:
     """The plan's altitude [km] against days: at each debris, then on each drift orbit
-    (the transfers drawn as instants, as the model has them)."""
+    (impulsive transfers drawn as instants, as the model has them; a low-thrust plan's
+    spirals as the straight ramps of their durations, ``|V(a) - V(a_d)| / f``)."""
     frame = flight.plan.catalog.frame
-    alt = (frame["a_km"].to_numpy() * 1e3 - flight.force.r_eq) / 1e3
+    a_km = frame["a_km"].to_numpy()
+    alt = a_km - flight.force.r_eq / 1e3
+    accel = flight.plan.accel_mps2
     days, heights = [0.0], [alt[0]]
     for k, leg in enumerate(flight.plan.legs):
         drift = leg.drift_a_km - flight.force.r_eq / 1e3
-        days += [leg.departure_day, leg.departure_day, leg.arrival_day, leg.arrival_day]
+        out = back = 0.0
+        if accel is not None:
+            speed = np.sqrt(flight.force.mu / (1e3 * np.array([a_km[k], leg.drift_a_km,
+                                                                a_km[k + 1]])))  # fmt: skip
+            out, back = np.abs(np.diff(speed)) / accel / SECONDS_PER_DAY
+        days += [leg.departure_day, leg.departure_day + out, leg.arrival_day - back,
+                 leg.arrival_day]  # fmt: skip
         heights += [alt[k], drift, drift, alt[k + 1]]
     days.append(flight.end_day)
     heights.append(alt[-1])

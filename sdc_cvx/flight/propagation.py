@@ -68,6 +68,7 @@ from scipy.integrate import ode
 from scipy.optimize import brentq
 
 from ..physics.elements import secular_rates
+from .atmosphere import _BASE_M, _RHO0, _SCALE_M, density
 from .frames import equatorial_basis
 
 RTOL = 1e-12
@@ -84,19 +85,6 @@ EARTH_ROTATION = 7.292115e-5
 FLATTENING = 1.0 / 298.257223563
 """WGS-84 flattening [-]: the altitude above the ellipsoid for the density."""
 
-# Vallado [1]_ Table 8-4: base altitudes [m], nominal densities [kg/m^3], scale heights [m]
-# fmt: off
-_BASE_M = [km * 1e3 for km in (0, 25, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120, 130, 140, 150,
-                               180, 200, 250, 300, 350, 400, 450, 500, 600, 700, 800, 900, 1000)]
-_RHO0 = [1.225, 3.899e-2, 1.774e-2, 3.972e-3, 1.057e-3, 3.206e-4, 8.770e-5, 1.905e-5, 3.396e-6,
-         5.297e-7, 9.661e-8, 2.438e-8, 8.484e-9, 3.845e-9, 2.070e-9, 5.464e-10, 2.789e-10,
-         7.248e-11, 2.418e-11, 9.518e-12, 3.725e-12, 1.585e-12, 6.967e-13, 1.454e-13, 3.614e-14,
-         1.170e-14, 5.245e-15, 3.019e-15]
-_SCALE_M = [km * 1e3 for km in (7.249, 6.349, 6.682, 7.554, 8.382, 7.714, 6.549, 5.799, 5.382,
-                                5.877, 7.263, 9.473, 12.636, 16.149, 22.523, 29.740, 37.105, 45.546,
-                                53.628, 53.298, 58.515, 60.828, 63.822, 71.835, 88.667, 124.64,
-                                181.05, 268.00)]
-# fmt: on
 _NAMED = {
     "j2": {},
     "j2-j4": {"j3": J3_EGM96, "j4": J4_EGM96},
@@ -141,14 +129,6 @@ class ForceModel:
 def _unit_pole(pole) -> np.ndarray:
     pole = np.asarray(pole, dtype=float).reshape(3)
     return pole / np.linalg.norm(pole)
-
-
-def density(altitude):
-    """Exponential atmosphere of Vallado [1]_ Table 8-4 [kg/m^3] at ``altitude`` [m]
-    (array_like; below 0 the sea-level layer, above 1000 km the last one)."""
-    h = np.asarray(altitude, dtype=float)
-    i = np.clip(np.searchsorted(_BASE_M, h, side="right") - 1, 0, len(_BASE_M) - 1)
-    return np.take(_RHO0, i) * np.exp(-(h - np.take(_BASE_M, i)) / np.take(_SCALE_M, i))
 
 
 def acceleration(r, v, force: ForceModel, pole) -> np.ndarray:
@@ -198,6 +178,12 @@ def acceleration(r, v, force: ForceModel, pole) -> np.ndarray:
             np.linalg.norm(v_rel, axis=-1, keepdims=True) * v_rel
         )
     return acc
+
+
+def _total(r, v, force: ForceModel, pole, thrust) -> np.ndarray:
+    """:func:`acceleration` plus the thrust's, if any."""
+    gravity = acceleration(r, v, force, pole)
+    return gravity if thrust is None else gravity + thrust.acceleration(r, v, _unit_pole(pole))
 
 
 def _rhs(force: ForceModel, pole) -> Callable:
@@ -299,7 +285,7 @@ def _hermite(t, nodes, states, accels, jerks):
 
 def propagate(r0, v0, t0: float, t1: float, force: ForceModel, *, pole, t_eval=None,
               events: Sequence[Callable] | None = None, rtol: float = RTOL,
-              atol: float = ATOL) -> Arc:  # fmt: skip
+              atol: float = ATOL, thrust=None) -> Arc:  # fmt: skip
     """Integrate a state from ``t0`` to ``t1`` [s] (``t1 > t0``) under ``force``.
 
     Parameters
@@ -320,6 +306,8 @@ def propagate(r0, v0, t0: float, t1: float, force: ForceModel, *, pole, t_eval=N
         (> 0: upward crossings only, < 0: downward only).
     rtol, atol : float
         DOP853's tolerances (:data:`RTOL`, :data:`ATOL`; atol in m and m/s).
+    thrust : Thrust, optional
+        A thrust arc's acceleration, added to ``force`` (:mod:`~sdc_cvx.flight.thrust`).
 
     Returns
     -------
@@ -356,7 +344,8 @@ def propagate(r0, v0, t0: float, t1: float, force: ForceModel, *, pole, t_eval=N
                     stop = -1
         return stop
 
-    solver = ode(_rhs(force, pole)).set_integrator("dop853", rtol=rtol, atol=atol, nsteps=10**9)
+    rhs = _rhs(force, pole) if thrust is None else thrust.added_to(_rhs(force, pole), pole)
+    solver = ode(rhs).set_integrator("dop853", rtol=rtol, atol=atol, nsteps=10**9)
     solver.set_solout(solout)
     solver.set_initial_value(y0, t0)
     solver.integrate(t1)
@@ -364,10 +353,9 @@ def propagate(r0, v0, t0: float, t1: float, force: ForceModel, *, pole, t_eval=N
         raise RuntimeError(f"DOP853 failed at t = {solver.t} s (code {solver.get_return_code()})")
     nodes = np.frombuffer(times, dtype=float)
     ys = np.frombuffer(states, dtype=float).reshape(-1, 6)
-    accels = acceleration(ys[:, :3], ys[:, 3:], force, pole)
-    # jerk = (grad a) v, by central differences along the path (drag's da/dv left out)
-    ahead, behind = (acceleration(ys[:, :3] + d * ys[:, 3:], ys[:, 3:], force, pole)
-                     for d in (_JERK_DT, -_JERK_DT))  # fmt: skip
+    # jerk = (grad a) v, by central differences along the path (da/dv left out)
+    accels, ahead, behind = (_total(ys[:, :3] + d * ys[:, 3:], ys[:, 3:], force, pole, thrust)
+                             for d in (0.0, _JERK_DT, -_JERK_DT))  # fmt: skip
     jerks = (ahead - behind) / (2.0 * _JERK_DT)
     t_events = [[] for _ in events]
     t_stop = float(t1) if solver.get_return_code() == 1 else float(nodes[-1])  # 2: stopped

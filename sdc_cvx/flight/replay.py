@@ -51,7 +51,9 @@ from ..physics.impulses import (
 )
 from ..physics.orbits import SECONDS_PER_DAY
 from ..physics.phasing import MeanOrbit, leg_at, phase_leg
+from . import thrust_legs
 from .corrections import (
+    aim_at,
     correct_eccentricity,
     correct_phase,
     correct_plane,
@@ -77,8 +79,6 @@ from .rates import (
 from .result import Flight, Rendezvous
 from .track import Track
 
-SHOTS = 3
-"""One-orbit shots of a circularising impulse on the averaged orbit it aims at."""
 CORRECTION_DAYS = 0.6
 """Time the corrections after an arrival take [days] (about 7 orbits): a leg followed by
 less stay at its debris aims to arrive that much earlier."""
@@ -151,38 +151,32 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
                                   model, pole)  # fmt: skip
             factors = drift_factors(a_plan, i_plan, t_ready, model, pole)
         consts["drift_factors"] = factors
-        point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
-        try:  # on the plan's date if it can; else within the mission's slack; else late
-            phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
-                                        laps=leg.laps, a_bounds=bounds,
-                                        latest_arrival=on_time, **consts)  # fmt: skip
-            if not in_time and slack > 0.0:
-                phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
-                                            laps=leg.laps, a_bounds=bounds,
-                                            latest_arrival=latest, **consts)  # fmt: skip
-            epochs, a_drift, model_dv = phased.epochs, phased.a_drift, phased.dv
-        except ValueError:  # no phasing found: the plan's point, unphased, flown as it is
-            in_time = False
-            epochs, a_drift, model_dv = point["epochs"], a_plan, float(point["impulses"].sum())
-            notes.append(f"leg {k + 1}: no phasing found; flown unphased")
-        if epochs[3] > (plan.tmax_days + HOPELESS_DAYS) * SECONDS_PER_DAY:
+        if plan.accel_mps2 is None:
+            step = _phase(origin, target, t_ready, leg, bounds, on_time, latest, consts)
+        else:
+            step = thrust_legs.phase(origin, target, t_ready, leg, plan.accel_mps2, factors,
+                                     bounds, on_time, latest, _physics(consts))  # fmt: skip
+        in_time = step["in_time"]
+        if step["note"]:
+            notes.append(f"leg {k + 1}: {step['note']}")
+        if step["arrive"] > (plan.tmax_days + HOPELESS_DAYS) * SECONDS_PER_DAY:
             notes.append(f"leg {k + 1} ({ids[k]} -> {ids[k + 1]}) cannot arrive before day "
-                         f"{epochs[3] / SECONDS_PER_DAY:.0f} (T_max {plan.tmax_days:g}): "
+                         f"{step['arrive'] / SECONDS_PER_DAY:.0f} (T_max {plan.tmax_days:g}): "
                          "not flown, nor the legs after it")  # fmt: skip
             break
-        flown = _fly_leg(track, k, epochs, origin, a_drift, i_plan, factors, ephemeris, model,
+        flown = _fly_leg(track, k, step, origin, plan.accel_mps2, factors, ephemeris, model,
                          pole)  # fmt: skip
         maneuvers += flown["maneuvers"]
         meeting = flown["meeting"]
         # phasing: the phased leg's model cost less the plan point's (same model, same
         # orbits); correction: whatever else the flight took, so that plan + phasing +
         # correction = flown, leg by leg
-        phasing = model_dv - float(point["impulses"].sum())
+        phasing = step["model_dv"] - step["point_dv"]
         correction = sum(m.dv_mps for m in flown["maneuvers"]) - leg.dv_mps - phasing
-        delay = epochs[3] - leg.arrival_day * SECONDS_PER_DAY
+        delay = step["arrive"] - leg.arrival_day * SECONDS_PER_DAY
         meetings.append(Rendezvous(
             target=ids[k + 1], **meeting, correction_dv_mps=correction,
-            phasing_shift_h=float(epochs[0] - t_ready) / 3600.0, phasing_dv_mps=phasing,
+            phasing_shift_h=float(step["depart"] - t_ready) / 3600.0, phasing_dv_mps=phasing,
             delay_days=delay / SECONDS_PER_DAY, in_time=bool(in_time),
         ))  # fmt: skip
         if progress is not None:
@@ -191,9 +185,38 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
                      f"{correction:+.2f} m/s, {delay / SECONDS_PER_DAY:+.2f} d")  # fmt: skip
     end = track.t + 2.0 * np.pi / orbits[-1].arglat_rate  # one more orbit with the last debris
     track.coast(end, model, _pole(plan, end))
+    if plan.accel_mps2 is not None:  # first: the last note says why a flight is incomplete
+        notes.insert(0, thrust_legs.impulse_note(maneuvers, plan.accel_mps2))
     return Flight(plan=plan, maneuvers=tuple(maneuvers), rendezvous=tuple(meetings),
                   segments=tuple(track.segments), force=model, rates=rates, notes=tuple(notes),
                   seconds=time.perf_counter() - started)  # fmt: skip
+
+
+def _physics(consts: dict) -> dict:
+    return {name: consts[name] for name in ("j2", "mu", "r_eq")}
+
+
+def _phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, bounds, on_time, latest,
+           consts) -> dict:  # fmt: skip
+    """The phased impulsive leg: on the plan's date if it can; else within the mission's
+    slack; else late (:func:`~sdc_cvx.physics.phasing.phase_leg`)."""
+    a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
+    point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
+    note = None
+    try:
+        phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan, laps=leg.laps,
+                                    a_bounds=bounds, latest_arrival=on_time, **consts)
+        if not in_time and latest > on_time:
+            phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
+                                        laps=leg.laps, a_bounds=bounds,
+                                        latest_arrival=latest, **consts)  # fmt: skip
+        epochs, a_drift, model_dv = phased.epochs, phased.a_drift, phased.dv
+    except ValueError:  # no phasing found: the plan's point, unphased, flown as it is
+        in_time, note = False, "no phasing found; flown unphased"
+        epochs, a_drift, model_dv = point["epochs"], a_plan, float(point["impulses"].sum())
+    return {"epochs": epochs, "a_drift": a_drift, "i_drift": i_plan, "in_time": in_time,
+            "model_dv": model_dv, "point_dv": float(point["impulses"].sum()),
+            "depart": float(epochs[0]), "arrive": float(epochs[3]), "note": note}  # fmt: skip
 
 
 def _pole(plan: FlightPlan, t: float) -> np.ndarray:
@@ -210,21 +233,6 @@ def _vehicle_orbit(track: Track, guess: MeanOrbit, model: ForceModel, pole) -> M
                                    mu=model.mu, r_eq=model.r_eq)  # fmt: skip
     return mine._replace(raan=now.raan - mine.raan_rate * now.t,
                          arglat=now.arglat - mine.arglat_rate * now.t)
-
-
-def _aim(track: Track, model, pole, a_goal, normal):
-    """The velocity in the plane ``normal`` whose orbit averages to ``a_goal`` (its radial
-    part kept: an eccentric drift orbit precesses as a circular one does; the arrival's
-    eccentricity is corrected after it, :mod:`~sdc_cvx.flight.corrections`)."""
-    r_hat = track.r / np.linalg.norm(track.r)
-    radial = np.dot(track.v, r_hat)
-    speed = np.sqrt(model.mu * (2.0 / np.linalg.norm(track.r) - 1.0 / a_goal) - radial**2)
-    for _ in range(SHOTS):
-        v_new = with_horizontal_speed(track.r, track.v, normal, speed)
-        averaged = averaged_orbit(track.r, v_new, track.t, model, pole=pole, samples=SAMPLES)
-        # vis-viva: d(a) = 2 a^2 v d(v) / mu
-        speed += (a_goal - averaged.a) * model.mu / (2.0 * averaged.a**2 * speed)
-    return with_horizontal_speed(track.r, track.v, normal, speed)
 
 
 def _tangential(track: Track, normal, a_to, a_from, de_along_node, model, pole):
@@ -275,16 +283,29 @@ def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
     return trims
 
 
-def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, factors, ephemeris,
+def _fly_leg(track: Track, k, step: dict, origin: MeanOrbit, accel, factors, ephemeris,
              model: ForceModel, pole) -> dict:  # fmt: skip
-    """The four impulses of leg ``k`` at ``epochs``, the rendezvous and the correction."""
-    leg, out = k + 1, []
-    up_first = a_drift >= origin.a  # the plane change on the higher-radius impulse (Eq. 13)
+    """Leg ``k`` as ``step`` phased it (impulses, or thrust arcs when ``accel`` is given),
+    the rendezvous and the correction."""
     # the target's orbit as SGP4 flies it, averaged over the orbit after the rendezvous
-    r_goal, v_goal = debris_orbit(ephemeris, k + 1, epochs[3], model)
+    r_goal, v_goal = debris_orbit(ephemeris, k + 1, step["arrive"], model)
     goal_orbit = orbit_average(r_goal, v_goal, mu=model.mu, pole=pole)
-    goal_e = in_node_frame(np.mean(eccentricity_vector(r_goal, v_goal, mu=model.mu), axis=0),
-                           goal_orbit.normal, pole)  # fmt: skip
+    if accel is None:
+        goal_e = in_node_frame(np.mean(eccentricity_vector(r_goal, v_goal, mu=model.mu),
+                                       axis=0), goal_orbit.normal, pole)  # fmt: skip
+        out = _impulses(track, k + 1, step["epochs"], origin, step["a_drift"], step["i_drift"],
+                        goal_orbit, goal_e, factors, model, pole)  # fmt: skip
+    else:
+        out = thrust_legs.fly_leg(track, k + 1, step["phased"], goal_orbit, accel, model, pole,
+                                  ephemeris)  # fmt: skip
+    return _rendezvous(track, k, out, goal_orbit, ephemeris, model, pole)
+
+
+def _impulses(track: Track, leg, epochs, origin: MeanOrbit, a_drift, i_drift, goal_orbit,
+              goal_e, factors, model: ForceModel, pole) -> list:  # fmt: skip
+    """The four impulses of an impulsive leg at ``epochs``, and the drift's trims."""
+    out = []
+    up_first = a_drift >= origin.a  # the plane change on the higher-radius impulse (Eq. 13)
     track.coast(epochs[0], model, pole)
     # the eccentricity: along the node line now, and along it again after the drift has
     # turned the apsides by `turn` (node_split: free within the transfers' room)
@@ -306,7 +327,7 @@ def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, facto
         plane = plane_with_inclination(track.r, track.v, pole, goal)
     else:
         plane = plane_towards(track.r, track.v, plane)
-    out.append(track.impulse(leg, "drift", _aim(track, model, pole, a_drift, plane)))
+    out.append(track.impulse(leg, "drift", aim_at(track, model, pole, a_drift, plane)))
     out += _drift(track, leg, epochs[2], factors, model, pole)
     plane = track.normal
     if goal_orbit.a < a_drift:  # going down: the plane change on this, higher, impulse
@@ -319,7 +340,14 @@ def _fly_leg(track: Track, k, epochs, origin: MeanOrbit, a_drift, i_drift, facto
         plane = plane_towards(track.r, track.v, goal_orbit.normal)
     else:
         plane = track.normal
-    out.append(track.impulse(leg, "arrive", _aim(track, model, pole, goal_orbit.a, plane)))
+    out.append(track.impulse(leg, "arrive", aim_at(track, model, pole, goal_orbit.a, plane)))
+    return out
+
+
+def _rendezvous(track: Track, k, out: list, goal_orbit, ephemeris, model: ForceModel,
+                pole) -> dict:  # fmt: skip
+    """The arrival measured, then the corrections that close what is left."""
+    leg = k + 1
     differences = _differences(track, goal_orbit, model, pole)
     out += correct_eccentricity(track, leg, debris_eccentricity(ephemeris, k + 1, track.t, model),
                                 model, pole)  # fmt: skip

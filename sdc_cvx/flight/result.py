@@ -6,7 +6,8 @@ swapped in, as the run folder itself is):
 
 - ``maneuvers.csv``: ``epoch_utc, leg, kind, dv_mps, dv_r_mps, dv_t_mps, dv_n_mps,
   dv_x_mps, dv_y_mps, dv_z_mps`` (RTN: radial, transverse, normal of the state before the
-  impulse; x, y, z in GCRF);
+  impulse; x, y, z in GCRF); a low-thrust flight's thrust arcs add ``end_utc,
+  accel_mps2, law`` (empty for its impulses), ``epoch_utc`` being the arc's start;
 - ``rendezvous.csv``: per arrival ``epoch_utc, target, miss_km, miss_mps, da_km, di_deg,
   draan_deg, correction_dv_mps, phasing_shift_h, phasing_dv_mps``, then ``delay_days``
   (arrival after the plan's) and ``in_time``; measured just after the ``arrive`` impulse;
@@ -56,16 +57,27 @@ def flight_folder_problem(run_folder) -> str | None:
 
 @dataclass(frozen=True)
 class Maneuver:
-    """One impulse: epoch [s after the plan's day 0], leg (1-based), kind, vectors [m/s]."""
+    """One impulse: epoch [s after the plan's day 0], leg (1-based), kind, vectors [m/s].
+
+    A thrust arc (a low-thrust vehicle's) also has its end ``end_s`` [s], its acceleration
+    ``accel_mps2`` and its direction ``law`` (:mod:`~sdc_cvx.flight.thrust`); its vectors
+    are the thrust integrated over the arc (RTN: in the turning local frame), its ΔV the
+    acceleration times the duration.
+    """
 
     epoch_s: float
     leg: int
     kind: str
     dv_gcrf: np.ndarray
     dv_rtn: np.ndarray
+    end_s: float | None = None
+    accel_mps2: float | None = None
+    law: str | None = None
 
     @property
     def dv_mps(self) -> float:
+        if self.end_s is not None:
+            return float(self.accel_mps2 * (self.end_s - self.epoch_s))
         return float(np.linalg.norm(self.dv_gcrf))
 
 
@@ -190,6 +202,13 @@ class Flight:
                 for m in self.maneuvers]  # fmt: skip
         frame = pd.DataFrame(rows, columns=MANEUVER_COLUMNS[1:])
         frame.insert(0, "epoch_utc", _iso(self.epochs([m.epoch_s for m in self.maneuvers])))
+        arcs = [m.end_s is not None for m in self.maneuvers]
+        if any(arcs):  # a low-thrust flight: its thrust arcs' ends, accelerations, laws
+            ends = _iso(self.epochs([m.end_s if arc else m.epoch_s
+                                     for m, arc in zip(self.maneuvers, arcs, strict=True)]))
+            frame["end_utc"] = [end if arc else "" for end, arc in zip(ends, arcs, strict=True)]
+            frame["accel_mps2"] = [m.accel_mps2 for m in self.maneuvers]
+            frame["law"] = [m.law or "" for m in self.maneuvers]
         return frame
 
     def rendezvous_frame(self) -> pd.DataFrame:

@@ -11,11 +11,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.integrate import trapezoid
 
 from ..physics.impulses import rtn
 from .oem import sample_times
 from .propagation import ForceModel, propagate
 from .result import Maneuver
+from .thrust import Thrust
 
 
 @dataclass
@@ -35,6 +37,23 @@ class Track:
         arc = propagate(self.r, self.v, self.t, t_end, force, pole=pole, t_eval=samples)
         self.segments.append((arc.t, arc.r, arc.v))
         self.t, self.r, self.v = t_end, arc.r1, arc.v1
+
+    def thrust(self, t_end: float, thrust: Thrust, force: ForceModel, pole: np.ndarray,
+               leg: int, kind: str) -> Maneuver | None:  # fmt: skip
+        """Fly a thrust arc to ``t_end`` [s] (one segment); the manoeuvre, its thrust
+        integrated over the OEM's samples (trapezoids), or None for an empty arc."""
+        if t_end <= self.t:
+            return None
+        start, samples = self.t, sample_times(self.t, t_end)
+        arc = propagate(self.r, self.v, self.t, t_end, force, pole=pole, t_eval=samples,
+                        thrust=thrust)  # fmt: skip
+        self.segments.append((arc.t, arc.r, arc.v))
+        self.t, self.r, self.v = t_end, arc.r1, arc.v1
+        accel = thrust.acceleration(arc.r, arc.v, pole)
+        local = np.stack([rtn(r, v, a) for r, v, a in zip(arc.r, arc.v, accel, strict=True)])
+        return Maneuver(start, leg, kind, trapezoid(accel, arc.t, axis=0),
+                        trapezoid(local, arc.t, axis=0), end_s=t_end,
+                        accel_mps2=thrust.accel, law=thrust.describe())  # fmt: skip
 
     def impulse(self, leg: int, kind: str, v_new) -> Maneuver:
         """Change the velocity to ``v_new`` [m/s] now; the manoeuvre that did it."""

@@ -188,31 +188,16 @@ def test_a_run_folder_without_its_scenario(paper_run, tmp_path):
     assert_no_flight(folder)
 
 
-@pytest.mark.slow
-def test_a_low_thrust_plan_is_not_flown_yet(tmp_path):
-    folder = tmp_path / "run"
-    run = cli_process("run", str(EXAMPLES / "low_thrust.toml"), "--n", "3", "--out",
-                      str(folder), "--quiet")  # fmt: skip
-    assert run.returncode == 0, run.stderr
-    assert_refused(cli_process("fly", str(folder)), str(folder), "low-thrust")
-    assert_no_flight(folder)
-
-
 @pytest.mark.requires_shared_data(TLE)
-@pytest.mark.parametrize(("option", "named"), [
-    ("injection = [7100.0, 0.0, 98.5, 100.0]", "injection orbit"),
-    ('transfer = "low-thrust"\n[vehicle]\naccel_mps2 = 1e-4', "low-thrust"),
-])  # fmt: skip
-def test_run_fly_refuses_what_fly_cannot_fly_before_planning(tmp_path, option, named):
-    """A plan from an injection orbit, or a low-thrust plan: refused before the search,
-    so exit 2 writes nothing (as the command's help says)."""
-    text = SSO_SCENARIO.replace("[mission]\n", "[mission]\n" + option.split("\n[")[0] + "\n")
-    if "\n[" in option:
-        text += "[" + option.split("\n[", 1)[1] + "\n"
+def test_run_fly_refuses_what_fly_cannot_fly_before_planning(tmp_path):
+    """A plan from an injection orbit: refused before the search, so exit 2 writes nothing
+    (as the command's help says)."""
+    text = SSO_SCENARIO.replace("[mission]\n",
+                                "[mission]\ninjection = [7100.0, 0.0, 98.5, 100.0]\n")
     folder = tmp_path / "run"
     result = cli_process("run", str(sso_scenario(tmp_path, text)), "--fly", "--out",
                          str(folder))  # fmt: skip
-    assert_refused(result, named, "--fly")
+    assert_refused(result, "injection orbit", "--fly")
     assert not folder.exists()
 
 
@@ -279,6 +264,44 @@ def test_run_fly_json_keeps_stdout_pure_json(tmp_path):
     summary = [line for line in result.stderr.splitlines() if line.startswith("flight ")]
     assert len(summary) == 1 and "flown" in summary[0]
     assert f"results   {folder / 'flight'}/" in result.stderr
+
+
+@pytest.mark.slow
+@pytest.mark.requires_shared_data(TLE)
+def test_a_low_thrust_plan_flies_its_spirals_and_plane_changes_as_thrust_arcs(tmp_path):
+    """The plan's spirals and plane changes, flown as arcs of the vehicle's acceleration:
+    each arc's ΔV is that acceleration times its duration, each leg's arcs cost the plan's
+    leg plus its phasing (the model's ΔV to the debris' orbits as flown), and they bring
+    the vehicle onto the debris' plane (the inclination and RAAN differences at arrival,
+    before any correction, are what the out-of-plane law switched at the antinodes and the
+    RAAN closure leave: hundredths of a degree, where the plane changes are degrees)."""
+    text = (SSO_SCENARIO.replace("[mission]\n", '[mission]\ntransfer = "low-thrust"\n')
+            + "\n[vehicle]\naccel_mps2 = 1e-4\n")  # fmt: skip
+    folder = tmp_path / "run"
+    result = cli_process("run", str(sso_scenario(tmp_path, text, tmax=120)), "--fly", "--out",
+                         str(folder))  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert {p.name for p in (folder / "flight").iterdir()} == FLIGHT_FILES
+    legs = json.loads((folder / "solution.json").read_text(encoding="utf-8"))["legs"]
+    maneuvers = pd.read_csv(folder / "flight" / "maneuvers.csv")
+    rendezvous = pd.read_csv(folder / "flight" / "rendezvous.csv")
+    arcs = maneuvers[maneuvers["end_utc"].notna()]
+    assert set(arcs["kind"]) >= {"spiral_out", "spiral_in"}
+    assert set(arcs["kind"]) <= {"spiral_out", "plane_change", "spiral_in"}
+    assert (arcs["accel_mps2"] == 1e-4).all() and arcs["law"].str.len().gt(0).all()
+    seconds = (pd.to_datetime(arcs["end_utc"]) - pd.to_datetime(arcs["epoch_utc"]))
+    assert arcs["dv_mps"].to_numpy() == pytest.approx(
+        1e-4 * seconds.dt.total_seconds().to_numpy(), rel=1e-6)  # fmt: skip
+    for k, leg in enumerate(legs, start=1):
+        flown = arcs.loc[arcs["leg"] == k, "dv_mps"].sum()
+        expected = leg["dv_mps"] + rendezvous["phasing_dv_mps"].iloc[k - 1]
+        assert flown == pytest.approx(expected, rel=0.03, abs=0.5), k
+    assert (rendezvous["di_deg"].abs() < 0.01).all(), rendezvous
+    assert (rendezvous["draan_deg"].abs() < 0.05).all(), rendezvous
+    assert (rendezvous["miss_km"] < 100.0).all()
+    flight = json.loads((folder / "flight" / "flight.json").read_text(encoding="utf-8"))
+    assert flight["status"] == "flown"
+    assert any("flown as impulses" in note for note in flight["notes"])
 
 
 # -- a campaign folder -------------------------------------------------------------------
