@@ -3,7 +3,11 @@
 ``objective = "max-value"`` (:data:`~sdc_cvx.inputs.campaign.OBJECTIVES`, issue 27): the
 campaign that removes the most value, each mission k flying between ``n_min`` and ``n``
 debris for a total ΔV (operations included) of at most its budget ``B_k``; among
-campaigns of equal value, the least ΔV.
+campaigns of equal value, the least ΔV.  When each mission's vehicle has a tank
+(:attr:`~sdc_cvx.inputs.campaign.Campaign.tank_limited`), ``B_k`` is at most the ΔV
+the tank can fly at all (a relaxation: the bound stays a proof) and each mission must
+also fit the tank with its schedule's propellant (:func:`tank_fits`); a path whose
+least-ΔV schedule does not is undecided, counted by the value bound.
 
 How it is solved and why the answer is certified.  For every launch and every count n of
 its range, the certified search enumerates every path of n debris whose lower bound is
@@ -43,7 +47,9 @@ import numpy as np
 from ..errors import MissionError, MissionInfeasible, SolverFailure
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
+from ..inputs.vehicle import propellant_budget
 from ..milp.types import SolverOptions
+from ..planner.nodes import MissionNodes
 from ..solution import OPTIMAL_GAP_MPS, RunStatus
 from .master import solve_ip
 from .pricing import Column, Launch, Pricing, mission_solution
@@ -65,7 +71,7 @@ of their budget)."""
 
 def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: SolverOptions,
                        deadline: float, say, stop, run, narrowed=None, found=(),
-                       exclude=()) -> tuple[list, list, bool]:  # fmt: skip
+                       exclude=(), fits=None) -> tuple[list, list, bool]:  # fmt: skip
     """Every mission of every launch within its budget (columns), the undecided paths, and
     whether the enumeration is complete (no limit stopped it).
 
@@ -79,7 +85,9 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
     best found can hold (a count not in it has none), and ``exclude`` leaves out the debris
     such a campaign cannot hold
     (:func:`~sdc_cvx.campaign.value_bound.cardinality_narrowing`).  ``found``: missions
-    within budget found before, kept as columns.
+    within budget found before, kept as columns.  ``fits(column)``: whether a mission fits
+    its vehicle's tank (:func:`tank_fits`); one within budget that does not is undecided
+    (another schedule of its path might fit: the value bound counts it).
     """
     columns: dict[tuple, Column] = {(c.launch, c.debris): c for c in sorted(
         found, key=lambda c: c.dv_mps, reverse=True)}  # the cheapest order of each set
@@ -114,12 +122,12 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
             done[(k, n)] = Pricing(k, (), np.inf, np.inf, "optimal", 0.0)
         pricing = done[(k, n)]
         complete &= pricing.complete or pricing.status == "infeasible"
-        fits = 0
+        within = 0
         for column in pricing.columns:
             key = (k, column.debris)
             floor[key] = min(floor.get(key, np.inf), column.lower_mps)
-            if column.dv_mps <= budget:
-                fits += 1
+            if column.dv_mps <= budget and (fits is None or fits(column)):
+                within += 1
                 if key not in columns or column.dv_mps < columns[key].dv_mps:
                     columns[key] = column
             elif column.lower_mps <= budget and (
@@ -129,7 +137,7 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
             say(f"  {launch.label()}, n = {n}: no mission worth the best campaign (the bound "
                 "proves it)")  # fmt: skip
         else:
-            say(f"  {launch.label()}, n = {n}: {fits} missions within {budget:g} m/s "
+            say(f"  {launch.label()}, n = {n}: {within} missions within {budget:g} m/s "
                 f"({len(pricing.columns)} paths certified)")  # fmt: skip
     undecided = {key: c for key, c in undecided.items() if key not in columns}
     # the set kept through its cheapest order, bounded by its least bound of any order
@@ -137,6 +145,24 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
                for key, c in columns.items()}  # fmt: skip
     undecided = {key: replace(c, lower_mps=floor[key]) for key, c in undecided.items()}
     return list(columns.values()), list(undecided.values()), complete
+
+
+def tank_fits(launches: list[Launch]):
+    """``fits(column)``: the propellant of the column's schedule (its legs' and its
+    operations' ΔV, :func:`~sdc_cvx.inputs.vehicle.propellant_budget`, kits left at each
+    debris) fits its launch's tank."""
+    operations = {}
+
+    def fits(column: Column) -> bool:
+        launch = launches[column.launch]
+        if column.launch not in operations:
+            operations[column.launch] = MissionNodes.of(launch.catalog, launch.mission).cost_mps
+        budget = propellant_budget(launch.mission.vehicle, column.schedule.dv_mps,
+                                   operations[column.launch][list(column.nodes)],
+                                   kit_at_start=launch.mission.injection is None)  # fmt: skip
+        return budget.fits
+
+    return fits
 
 
 def _under(narrowed, k: int, n: int, budget: float) -> dict:
@@ -197,8 +223,14 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
     say(f"campaign: the most value, {len(launches)} launches, {len(catalog)} candidates; "
         "every mission within its budget")  # fmt: skip
     price = campaign.price_per_value_mps if campaign.objective == "value-per-dv" else None
+    fits = tank_fits(launches) if campaign.tank_limited else None
+    if fits is not None:
+        say("  each mission must fit its vehicle's tank: budgets "
+            f"{', '.join(f'{b:.2f}' for b in campaign.dv_budget_mps)} m/s"
+            f"{' (the most ΔV each tank flies)' if campaign.budgets_from_tank else ''}, then "
+            "each mission's propellant")  # fmt: skip
     enumerate_all = partial(enumerate_missions, launches, campaign, solver=solver, say=say,
-                            stop=stop, run=run)  # fmt: skip
+                            stop=stop, run=run, fits=fits)  # fmt: skip
     upper, priced = np.inf, len(counts_of(launches, campaign))
     # every mission within budget, if that ends in a share of the time (small programmes)
     columns, undecided, complete = enumerate_all(
@@ -213,6 +245,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                 cs, values, len(launches), len(catalog), solver=solver)[1],
             columns=columns)  # fmt: skip
         found, upper = tuple(bound.columns.values()) + tuple(columns), bound.proven
+        found = tuple(c for c in found if fits is None or fits(c))  # missions that fly
         priced += (bound.rounds + 1) * len(counts_of(launches, campaign))
         best = best_value(list(found), values, len(launches), len(catalog), solver=solver)[1]
         narrowed, excluded = None, ()
@@ -231,7 +264,15 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         plan, value = best_value(columns, values, len(launches), len(catalog), solver=solver)
     else:
         plan, value = _priced(columns, values, price, len(launches), len(catalog), solver)
+    over_tank = [c for c in undecided if fits is not None and not fits(c)
+                 and c.dv_mps <= campaign.dv_budget_mps[c.launch]]  # fmt: skip
     if plan is None:
+        if complete and over_tank and len(over_tank) == len(undecided):
+            return dict(plan=None, launches=launches, notes=(
+                f"no campaign found: the least-ΔV schedules of the {len(over_tank)} missions "
+                "within budget need more propellant than their tanks hold (a schedule of "
+                "more ΔV, spent later on a lighter vehicle, might need less and is not "
+                "searched); give a larger tank or fewer debris",))  # fmt: skip
         if complete and not undecided:
             empty = [launch.label() for launch in launches
                      if not any(c.launch == launch.index for c in columns)]  # fmt: skip
@@ -264,9 +305,13 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
     notes = []
     if not complete:
         notes.append("a limit stopped the enumeration: missions within budget may be missing")
-    if undecided and value_bound > value:
-        notes.append(f"{len(undecided)} paths within the path tolerance of their budget "
-                     "are undecided: the value bound counts them")  # fmt: skip
+    if len(undecided) > len(over_tank) and value_bound > value:
+        notes.append(f"{len(undecided) - len(over_tank)} paths within the path tolerance of "
+                     "their budget are undecided: the value bound counts them")  # fmt: skip
+    if over_tank and value_bound > value:
+        notes.append(f"{len(over_tank)} missions within budget need more propellant than "
+                     "their tank holds on their least-ΔV schedule (another schedule might "
+                     "not): the value bound counts them")  # fmt: skip
     status = RunStatus.OPTIMAL if proven else RunStatus.FEASIBLE
     return dict(plan=chosen, launches=launches, value=value,
                 value_bound=value_bound if price is None and np.isfinite(value_bound)
@@ -345,7 +390,8 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
                       for row in front)  # fmt: skip
         say(f"  value against ΔV: {len(front)} campaigns of the front")
     if found["plan"] is None:
-        raise SolverFailure(f"{found['notes'][0]}: allow more time")
+        why = found["notes"][0]
+        raise SolverFailure(why if why.startswith("no campaign") else f"{why}: allow more time")
     status = found["status"]
     sized = [replace(launch, mission=launch.mission.replace(n=len(c.debris)))
              for launch, c in ((found["launches"][c.launch], c) for c in found["plan"])]

@@ -19,12 +19,13 @@ from __future__ import annotations
 
 import numbers
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..errors import MissionError
 from .mission import MAX_TMAX_DAYS, Mission, _ids_text
+from .vehicle import dv_ceiling_mps
 
 DEFAULT_PERIOD_DAYS = 365.25
 """Days between two launches of ``Campaign.yearly`` (one a year)."""
@@ -64,7 +65,10 @@ class Campaign:
     objective : {"min-dv", "max-value"}
         See :data:`OBJECTIVES`.
     dv_budget_mps : tuple of float
-        ``max-value``: each mission's total ΔV budget [m/s] (one per launch).
+        ``max-value``: each mission's total ΔV budget [m/s] (one per launch).  When every
+        mission's vehicle has a tank (``dry_mass_kg``, ``propellant_kg``, ``isp_s``), each
+        mission must also fit it (:attr:`tank_limited`), and without budgets they are the
+        most ΔV the tank can fly (:func:`~sdc_cvx.inputs.vehicle.dv_ceiling_mps`).
     n_min : tuple of int
         The fewest debris of each mission (one per launch; default its ``n``, the most):
         each mission then removes between ``n_min`` and ``n``.
@@ -92,6 +96,8 @@ class Campaign:
     n_min: tuple[int, ...] = ()
     values: tuple[tuple[str, float], ...] = ()
     price_per_value_mps: float | None = None
+    budgets_from_tank: bool = field(default=False, init=False)
+    """The budgets are the vehicles' tanks' ΔV ceilings, not given."""
 
     def __post_init__(self):
         if isinstance(self.launch_days, numbers.Real):
@@ -108,6 +114,10 @@ class Campaign:
                 value = (value,)
             value = tuple(value)
             object.__setattr__(self, name, value * count if len(value) == 1 else value)
+        if self.tank_limited and not self.dv_budget_mps:
+            object.__setattr__(self, "dv_budget_mps",
+                               tuple(dv_ceiling_mps(m.vehicle) for m in self.missions))
+            object.__setattr__(self, "budgets_from_tank", True)
         if isinstance(self.values, Mapping):
             object.__setattr__(self, "values", tuple(self.values.items()))
         object.__setattr__(self, "values", tuple((str(k), v) for k, v in self.values))
@@ -177,7 +187,9 @@ class Campaign:
         budgets = self.dv_budget_mps
         if len(budgets) != count:
             yield (f"objective = {self.objective!r} needs dv_budget_mps, one per launch (or "
-                   f"one for all) [m/s], got {list(budgets) or 'none'}")  # fmt: skip
+                   f"one for all) [m/s], got {list(budgets) or 'none'}; or a [vehicle] with "
+                   "dry_mass_kg, propellant_kg and isp_s, whose tank bounds each "
+                   "mission")  # fmt: skip
         elif not all(_is_real(b) and np.isfinite(b) and b > 0 for b in budgets):
             yield f"dv_budget_mps must be numbers > 0 [m/s], got {list(budgets)}"
         bad_values = [(k, v) for k, v in self.values
@@ -197,6 +209,14 @@ class Campaign:
                 yield (f"n ranges must be [n_min, n_max] with 2 <= n_min <= n_max, one per "
                        f"launch, got n_min {list(self.n_min)} for n_max "
                        f"{[m.n for m in self.missions]}")  # fmt: skip
+
+    @property
+    def tank_limited(self) -> bool:
+        """A value objective whose every mission must fit its vehicle's tank (each
+        vehicle with ``dry_mass_kg``, ``propellant_kg`` and ``isp_s``)."""
+        return self.objective != "min-dv" and bool(self.missions) and all(
+            isinstance(m, Mission) and m.vehicle is not None and m.vehicle.can_budget()
+            and m.vehicle.propellant_kg is not None for m in self.missions)  # fmt: skip
 
     def fewest(self, k: int) -> int:
         """The fewest debris mission ``k`` (0-based) removes."""
@@ -357,6 +377,7 @@ class Campaign:
             {"n_min": [self.fewest(k) for k in range(len(self.missions))]} if self.n_min
             else {}) | ({} if self.objective == "min-dv" else {
             "objective": self.objective, "dv_budget_mps": list(self.dv_budget_mps),
+            "dv_budget_from": "tank" if self.budgets_from_tank else "given",
             "n_min": [self.fewest(k) for k in range(len(self.missions))],
             "values": dict(self.values)}) | ({} if self.price_per_value_mps is None else {
             "price_per_value_mps": self.price_per_value_mps})  # fmt: skip

@@ -149,6 +149,29 @@ class PropellantBudget(NamedTuple):
         return self.capacity_kg is None or self.needed_kg <= self.capacity_kg * (1 + 1e-12)
 
 
+def dv_ceiling_mps(vehicle: Vehicle) -> float:
+    """The most ΔV [m/s] any plan flies on the vehicle's full tank: ``G0 Isp ln(1 + P /
+    (m_dry + m_kit))``.
+
+    Every burn of a plan, legs and operations alike, happens with at least the dry mass,
+    the kit of the last debris (left after its operations) and the propellant still to
+    burn aboard; so ``P >= (m_dry + m_kit) (exp(ΔV / (G0 Isp)) - 1)`` for a plan of total
+    ΔV, with equality when all of it is burned last.  A plan of more ΔV than this never
+    fits the tank (the bound a campaign's value search uses as its ΔV budget; each
+    mission found is then checked by :func:`propellant_budget`).
+
+    Raises
+    ------
+    MissionError
+        Without ``dry_mass_kg``, ``isp_s`` or ``propellant_kg``.
+    """
+    if not vehicle.can_budget() or vehicle.propellant_kg is None:
+        raise MissionError("a ΔV budget from the tank needs the vehicle's dry_mass_kg, "
+                           "propellant_kg and isp_s")  # fmt: skip
+    lightest = float(vehicle.dry_mass_kg) + float(vehicle.kit_mass_kg)
+    return G0 * float(vehicle.isp_s) * math.log1p(float(vehicle.propellant_kg) / lightest)
+
+
 def propellant_budget(vehicle: Vehicle, leg_dv_mps, operations_dv_mps, *,
                       kit_at_start: bool = True) -> PropellantBudget:  # fmt: skip
     """Propellant and masses of a plan, from its end back to its launch (rocket equation).

@@ -298,9 +298,9 @@ class Scenario:
                 data["campaign"]["n"] = [[low, high] for low, high in zip(
                     campaign["n_min"], campaign["n"], strict=True)]  # fmt: skip
             if self.campaign.objective != "min-dv":
-                data["campaign"] |= {
-                    "objective": campaign["objective"],
-                    "dv_budget_mps": campaign["dv_budget_mps"]}  # fmt: skip
+                data["campaign"]["objective"] = campaign["objective"]
+                if not self.campaign.budgets_from_tank:  # else the tanks give them again
+                    data["campaign"]["dv_budget_mps"] = campaign["dv_budget_mps"]
                 if "price_per_value_mps" in campaign:
                     data["campaign"]["price_per_value_mps"] = campaign["price_per_value_mps"]
         if "vehicle" in data["mission"]:

@@ -66,11 +66,12 @@ def test_late_tables_give_a_greedy_plan_first_and_the_search_goes_on(monkeypatch
 
 @pytest.mark.slow
 @pytest.mark.skipif(not FRAGMENTS.is_file(), reason="pykep TLE sample beside the repository")
-@pytest.mark.parametrize("limit", [12, 20])
+@pytest.mark.parametrize("limit", [12])
 def test_run_with_a_limit_shorter_than_the_tables_writes_a_feasible_plan(tmp_path, limit):
     """481 fragments, 230 880 edges, tables of about 15 s: --time-limit 12 or 20 wrote
     nothing (exit 4); now a plan that flies, feasible, with its gap (the wall time against
-    the limit is measured by benchmarks/time_limit.py)."""
+    the limit is measured by benchmarks/time_limit.py; 20 s, which passed too, is left
+    out of the suite for its time)."""
     done = subprocess.run([sys.executable, "-m", "sdc_cvx", "run", "--catalog", str(FRAGMENTS),
                            "--time-limit", str(limit), "--out", str(tmp_path / "out")],
                           capture_output=True, text=True, timeout=180)  # fmt: skip
