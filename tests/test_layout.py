@@ -299,7 +299,8 @@ def test_import_sdc_cvx_is_light():
 
 @pytest.mark.slow
 def test_the_default_run_needs_no_cvxpy_when_labels_solve_the_relaxations(tmp_path):
-    """``python -m sdc_cvx run`` on the paper case (README's first command): the certified
+    """``python -m sdc_cvx run`` on the paper case (README's first command, here with n = 3
+    for the suite's time: the same code paths): the certified
     search solves every relaxation by labels, so neither the run nor the check of its
     backend imports CVXPY (1-2 s of import, issue 21's end-to-end goal); the paper's
     method, a MILP every iteration, does."""
@@ -312,8 +313,8 @@ def test_the_default_run_needs_no_cvxpy_when_labels_solve_the_relaxations(tmp_pa
     loaded = {}
     for method in ("certified", "paper"):
         done = subprocess.run(
-            [sys.executable, "-c", probe, "run", "--method", method, "--json", "--quiet",
-             "--out", str(tmp_path / method)],
+            [sys.executable, "-c", probe, "run", "--method", method, "--n", "3", "--json",
+             "--quiet", "--out", str(tmp_path / method)],
             capture_output=True, text=True, timeout=300,
         )  # fmt: skip
         assert done.returncode == 0, done.stderr

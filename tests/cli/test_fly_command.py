@@ -253,36 +253,28 @@ def test_run_fly_writes_the_flight_folder(tmp_path):
 
 @pytest.mark.slow
 @pytest.mark.requires_shared_data(TLE)
-def test_run_fly_json_keeps_stdout_pure_json(tmp_path):
-    folder = tmp_path / "run"
-    result = cli_process("run", str(sso_scenario(tmp_path)), "--fly", "--json", "--out",
-                         str(folder))  # fmt: skip
-    assert result.returncode == 0, result.stderr
-    data = json.loads(result.stdout)  # nothing of the flight around it
-    assert data == json.loads((folder / "solution.json").read_text(encoding="utf-8"))
-    assert (folder / "flight" / "maneuvers.csv").is_file()
-    summary = [line for line in result.stderr.splitlines() if line.startswith("flight ")]
-    assert len(summary) == 1 and "flown" in summary[0]
-    assert f"results   {folder / 'flight'}/" in result.stderr
-
-
-@pytest.mark.slow
-@pytest.mark.requires_shared_data(TLE)
 def test_a_low_thrust_plan_flies_its_spirals_and_plane_changes_as_thrust_arcs(tmp_path):
     """The plan's spirals and plane changes, flown as arcs of the vehicle's acceleration:
     each arc's ΔV is that acceleration times its duration, each leg's arcs cost the plan's
     leg plus its phasing (the model's ΔV to the debris' orbits as flown), and they bring
     the vehicle onto the debris' plane (the inclination and RAAN differences at arrival,
     before any correction, are what the out-of-plane law switched at the antinodes and the
-    RAAN closure leave: hundredths of a degree, where the plane changes are degrees)."""
+    RAAN closure leave: hundredths of a degree, where the plane changes are degrees).
+    Run with ``--json``, whose stdout stays the solution alone."""
     text = (SSO_SCENARIO.replace("[mission]\n", '[mission]\ntransfer = "low-thrust"\n')
             + "\n[vehicle]\naccel_mps2 = 1e-4\n")  # fmt: skip
     folder = tmp_path / "run"
-    result = cli_process("run", str(sso_scenario(tmp_path, text, tmax=120)), "--fly", "--out",
-                         str(folder))  # fmt: skip
+    result = cli_process("run", str(sso_scenario(tmp_path, text, tmax=120)), "--fly", "--json",
+                         "--out", str(folder))  # fmt: skip
     assert result.returncode == 0, result.stderr
     assert {p.name for p in (folder / "flight").iterdir()} == FLIGHT_FILES
-    legs = json.loads((folder / "solution.json").read_text(encoding="utf-8"))["legs"]
+    # --json keeps stdout pure JSON: the flight's lines go to stderr
+    data = json.loads(result.stdout)
+    assert data == json.loads((folder / "solution.json").read_text(encoding="utf-8"))
+    summary = [line for line in result.stderr.splitlines() if line.startswith("flight ")]
+    assert len(summary) == 1 and "flown" in summary[0]
+    assert f"results   {folder / 'flight'}/" in result.stderr
+    legs = data["legs"]
     maneuvers = pd.read_csv(folder / "flight" / "maneuvers.csv")
     rendezvous = pd.read_csv(folder / "flight" / "rendezvous.csv")
     arcs = maneuvers[maneuvers["end_utc"].notna()]

@@ -8,7 +8,6 @@ and against random plans.  Nothing from ``sdc_cvx`` is imported.
 from __future__ import annotations
 
 import itertools
-import time
 
 import numpy as np
 import pytest
@@ -407,16 +406,6 @@ def test_operations_time_and_infeasible():
     # the spirals and plane changes alone outlast a short T_max
     assert lt.optimum(cat.a_m, cat.e, cat.inc_rad, cat.raan_rad,
                       **{**kw, "tmax_days": 5.0}) is None  # fmt: skip
-
-
-@pytest.mark.slow
-def test_run_time_of_a_full_case():
-    cat = lt.random_catalog(4, 8, kind="mixed")
-    started = time.perf_counter()
-    plan = lt.optimum(cat.a_m, cat.e, cat.inc_rad, cat.raan_rad, n=4, tmax_days=366.0,
-                      accel_mps2=1e-4, rule="free")  # fmt: skip
-    assert time.perf_counter() - started < 20.0
-    assert plan is not None and plan.info["paths_evaluated"] < 1680
 
 
 def test_random_catalog():
