@@ -10,6 +10,7 @@ set per launch with no debris twice: the most value, then the least ΔV.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -54,6 +55,14 @@ class Case:
                            values=self.values())  # fmt: skip
 
 
+@functools.cache
+def brute_force(case: Case):
+    """The brute force's most valuable campaign of ``case`` (computed once per case: each
+    takes seconds, and three tests compare with it)."""
+    return value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                         case.budgets, case.values(), case.rule)  # fmt: skip
+
+
 CASES = [
     pytest.param(Case("ranges-2-3", 8, 7, (0.0, 365.25), ((2, 3), (2, 3)), (200.0, 200.0),
                       (300.0, 250.0)), id="ranges-2-3",
@@ -71,8 +80,7 @@ CASES = [
 
 @pytest.mark.parametrize("case", CASES)
 def test_the_most_valuable_campaign_is_the_brute_forces(case):
-    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
-                         case.budgets, case.values(), case.rule)  # fmt: skip
+    best = brute_force(case)
     assert np.isfinite(best.value) and best.margin_mps > 2 * GRID_TOL_MPS  # not on the edge
     sol = solve_campaign(case.catalog(), case.campaign(), workers=1)
     found = f"solver {[m.path for m in sol.missions]}; brute {[sorted(s) for s in best.sets]}"
@@ -99,8 +107,7 @@ def test_the_narrowed_enumeration_finds_the_brute_forces_campaign(case, monkeypa
 
     monkeypatch.setattr(value, "PLAIN_SHARE", 0.0)
     monkeypatch.setattr(value_bound, "NARROW_ONLY_SUBSETS", False)  # every count narrowed
-    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
-                         case.budgets, case.values(), case.rule)  # fmt: skip
+    best = brute_force(case)
     lines: list[str] = []
     sol = solve_campaign(case.catalog(), case.campaign(), workers=1, time_limit_s=3600.0,
                          log=lines.append)  # fmt: skip
@@ -116,8 +123,7 @@ def test_the_narrowed_enumeration_finds_the_brute_forces_campaign(case, monkeypa
 def test_the_lagrangian_bound_is_above_the_brute_forces_optimum(case):
     """The rounds' bound alone (before any enumeration) is a proof: never below the most
     value the brute force finds, and every mission they found flies within its budget."""
-    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
-                         case.budgets, case.values(), case.rule)  # fmt: skip
+    best = brute_force(case)
     catalog, campaign = case.catalog(), case.campaign()
     values = campaign.value_of(catalog.ids)
     run = lambda tasks: [price(launch, **kwargs) for launch, kwargs in tasks]  # noqa: E731
@@ -297,8 +303,7 @@ def test_a_stopped_enumeration_returns_the_campaign_it_has_and_its_bound(monkeyp
     sol = solve_campaign(case.catalog(), case.campaign(), workers=1, log=lines.append,
                          time_limit_s=3600.0,
                          stop=lambda: any(said in line for line in lines))  # fmt: skip
-    best = value_optimum(case.catalog(), case.launch_days, case.ranges, case.tmax,
-                         case.budgets, case.values(), case.rule)  # fmt: skip
+    best = brute_force(case)
     assert sol.status == RunStatus.FEASIBLE and not sol.certified
     assert sol.lower_bound_mps is None
     assert sol.value <= best.value + 1e-9 <= sol.value_bound + 2e-9
