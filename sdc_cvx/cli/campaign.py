@@ -17,6 +17,7 @@ from ..errors import (
     MissionInfeasible,
     SolverFailure,
     SweepError,
+    listing,
 )
 from .budget import MISSION_FOLDER_S, search_limit
 from .exits import (
@@ -123,6 +124,13 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         campaign.check_candidates(catalog)
     except MissionError as err:
         fail(f"{scenario_file}: campaign: {err} (catalog: {catalog.source})")
+    from ..study.scenario_values import CSI, candidates_without_mass  # pandas: not at --help
+
+    if scenario.catalog_values == CSI and (missing := candidates_without_mass(
+            catalog, dict(campaign.values))):  # fmt: skip
+        fail(f"{scenario.catalog_masses}: no mass for {len(missing)} of the {len(catalog)} "
+             f"candidates ({listing(missing)}): the criticality index (values = \"csi\") "
+             "needs each one's mass [kg]; add them, or filter those out")  # fmt: skip
     at_once = pricings_at_once(workers, scheduler, None, len(campaign))
     if (problem := size_problem(len(catalog), at_once)) is not None:
         fail(f"{catalog.source}: {problem}")

@@ -139,9 +139,13 @@ class Scenario:
     source : Path or None
         The scenario file read, if any.  Not compared: two scenarios with the same
         content are equal wherever they were read from.
-    catalog_values : Path or None
+    catalog_values : Path, "csi" or None
         ``[catalog] values``: the table of each debris' value (``id,value``) read into
-        the campaign (``objective = "max-value"``).
+        the campaign (``objective = "max-value"``), or ``"csi"``: the Criticality of
+        Spacecraft Index computed from the catalogue and ``catalog_masses``
+        (:mod:`~sdc_cvx.study.scenario_values`).
+    catalog_masses : Path or None
+        ``[catalog] masses``: each debris' mass [kg] (``id,mass_kg``), for ``"csi"``.
     """
 
     catalog_path: Path | None = None
@@ -154,8 +158,10 @@ class Scenario:
     source: Path | None = field(default=None, compare=False)
     catalog_strict: bool = False
     catalog_raan_rates: str = "j2"
-    catalog_values: Path | None = None
+    catalog_values: Path | str | None = None
     catalog_values_columns: tuple[str, str] = ("id", "value")
+    catalog_masses: Path | None = None
+    catalog_masses_columns: tuple[str, str] = ("id", "mass_kg")
 
     # ------------------------------------------------------------------ reading
     @classmethod
@@ -288,7 +294,11 @@ class Scenario:
             data["selection"] = self.selection.to_dict()
         if self.catalog_values is not None:
             data["catalog"]["values"] = str(self.catalog_values)
-            data["catalog"]["values_columns"] = list(self.catalog_values_columns)
+            if self.catalog_masses is None:
+                data["catalog"]["values_columns"] = list(self.catalog_values_columns)
+        if self.catalog_masses is not None:
+            data["catalog"]["masses"] = str(self.catalog_masses)
+            data["catalog"]["masses_columns"] = list(self.catalog_masses_columns)
         if self.campaign is not None:
             campaign = self.campaign.to_dict()
             data["campaign"] = {key: campaign[key] for key in (
@@ -330,7 +340,8 @@ class Scenario:
                 if self.catalog_raan_rates != "j2":
                     lines.append(f"raan_rates = {toml_value(self.catalog_raan_rates)}")
                 lines += [f"{key} = {toml_value(values[key])}"
-                          for key in ("values", "values_columns") if key in values]  # fmt: skip
+                          for key in ("values", "values_columns", "masses", "masses_columns")
+                          if key in values]  # fmt: skip
                 continue
             unset = [key for key, value in values.items() if value is None]
             lines += [f"{key} = {toml_value(value)}" for key, value in values.items()

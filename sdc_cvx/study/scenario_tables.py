@@ -23,15 +23,15 @@ from dataclasses import dataclass
 from datetime import UTC, date, datetime, time
 from pathlib import Path
 
-from ..errors import CatalogError, ScenarioError
+from ..errors import ScenarioError
 from ..inputs.campaign import DEFAULT_PERIOD_DAYS, Campaign
 from ..inputs.catalog import RAAN_RATES, Catalog
 from ..inputs.formats import EXTENSION_FORMATS, FORMATS, READERS, sniff_format
 from ..inputs.mission import Mission, MissionError
 from ..inputs.selection import OBJECT_TYPES, select
-from ..inputs.values import read_values
 from ..inputs.vehicle import Vehicle
 from ..milp.types import MILP_BACKENDS, SolverOptions
+from .scenario_values import catalog_values
 
 CATALOG_FORMATS = FORMATS
 """Catalog formats a scenario may name (:data:`~sdc_cvx.inputs.formats.FORMAT_TABLE`)."""
@@ -117,7 +117,8 @@ class _Limit(float):
 
 TABLES = ("catalog", "mission", "solver", "selection", "campaign", "vehicle")
 """The tables a scenario file may have."""
-_CATALOG_KEYS = ("path", "format", "start", "strict", "raan_rates", "values", "values_columns")
+_CATALOG_KEYS = ("path", "format", "start", "strict", "raan_rates", "values", "values_columns",
+                 "masses", "masses_columns")  # fmt: skip
 _MISSION_KEYS = tuple(f.name for f in dataclasses.fields(Mission) if f.name != "vehicle")
 _VEHICLE_KEYS = tuple(f.name for f in dataclasses.fields(Vehicle))
 _SOLVER_KEYS = tuple(f.name for f in dataclasses.fields(SolverOptions))
@@ -131,7 +132,8 @@ TABLE_KEYS = {"catalog": _CATALOG_KEYS, "mission": _MISSION_KEYS, "solver": _SOL
 """The keys each table may hold."""
 _TYPES = {
     "catalog": {"path": str, "format": str, "start": object, "strict": bool,
-                "raan_rates": str, "values": str, "values_columns": tuple[str, ...]},
+                "raan_rates": str, "values": str, "values_columns": tuple[str, ...],
+                "masses": str, "masses_columns": tuple[str, ...]},
     "mission": typing.get_type_hints(Mission),
     "solver": typing.get_type_hints(SolverOptions),
     "selection": typing.get_type_hints(Selection) | {"max_eccentricity": _Limit | None},
@@ -207,18 +209,8 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
             "J2 rates of the elements; sgp4: each debris' rate fitted to its SGP4 "
             f"propagation), got {_show(catalog['raan_rates'])}"
         )
-    values_path, values = None, {}
-    if "values" in catalog:
-        values_path = (base / Path(catalog["values"]).expanduser()).resolve()
-        columns = tuple(catalog.get("values_columns", ("id", "value")))
-        if len(columns) != 2:
-            problems.append(f"catalog.values_columns must name two columns (the id's, the "
-                            f"value's), got {_show(list(columns))}")  # fmt: skip
-        else:
-            try:
-                values = read_values(values_path, columns)
-            except CatalogError as err:
-                problems.append(f"catalog.values: {err}")
+    values, values_path, masses_path = catalog_values(catalog, base, catalog_path,
+                                                      catalog_format, start, problems)
     campaign = None
     if "campaign" in tables and mission is not None:
         campaign = _campaign(tables["campaign"], mission, problems, values)
@@ -231,8 +223,10 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
             "solver": solver, "catalog_start": start, "selection": selection,
             "campaign": campaign, "catalog_strict": strict,
             "catalog_raan_rates": raan_rates, "catalog_values": values_path,
-            "catalog_values_columns": tuple(catalog.get("values_columns",
-                                                        ("id", "value")))}  # fmt: skip
+            "catalog_values_columns": tuple(catalog.get("values_columns", ("id", "value"))),
+            "catalog_masses": masses_path,
+            "catalog_masses_columns": tuple(catalog.get("masses_columns",
+                                                        ("id", "mass_kg")))}  # fmt: skip
 
 
 def _campaign(values: dict, mission: Mission, problems: list[str],
