@@ -17,10 +17,12 @@ from pathlib import Path
 from ..errors import CatalogError
 
 
-def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value")) -> dict[str, float]:
+def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
+                what: str = "values") -> dict[str, float]:  # fmt: skip
     """``{id: value}`` from a CSV table with the ``columns`` (id, value), by default
     ``id,value`` (``[catalog] values_columns`` names others: a published ranking's own
-    ``norad_id,listed_score``).
+    ``norad_id,listed_score``).  ``what`` names the file in messages (``"masses"``: the
+    masses file of the criticality index).
 
     Raises
     ------
@@ -34,13 +36,13 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value")) ->
     try:
         text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError) as err:
-        raise CatalogError(f"{source}: cannot read the values file: "
+        raise CatalogError(f"{source}: cannot read the {what} file: "
                            f"{getattr(err, 'strerror', None) or err}") from None  # fmt: skip
     rows = csv.reader(text.splitlines())
     header = [name.strip().lower() for name in next(rows, [])]
     id_name, value_name = (name.strip().lower() for name in columns)
     if id_name not in header or value_name not in header:
-        raise CatalogError(f"{source}, header: a values file needs the columns "
+        raise CatalogError(f"{source}, header: a {what} file needs the columns "
                            f"{id_name!r} and {value_name!r}, found "
                            f"{', '.join(header) or 'no header'}")  # fmt: skip
     at_id, at_value = header.index(id_name), header.index(value_name)

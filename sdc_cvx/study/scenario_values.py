@@ -67,7 +67,7 @@ def _csi(catalog: dict, base: Path, catalog_path, catalog_format, start, problem
                             "comes from the catalogue")  # fmt: skip
         return {}, CSI, masses_path
     try:
-        masses = read_values(masses_path, columns)
+        masses = read_values(masses_path, columns, what="masses")
         whole = READERS[catalog_format](catalog_path, start=start, on_invalid="set aside")
     except CatalogError as err:
         problems.append(f"catalog.masses: {err}")

@@ -113,3 +113,21 @@ def test_a_csi_campaign_reads_its_masses_and_names_a_candidate_without_one(tmp_p
     assert result["value"] == pytest.approx(sum(expected[k] for k in removed))
     used = (tmp_path / "out" / "scenario.toml").read_text(encoding="utf-8")
     assert 'values = "csi"' in used and str(masses) in used
+
+
+@pytest.mark.requires_shared_data(TLE)
+def test_a_bad_masses_file_is_named_with_its_line_and_field(tmp_path):
+    masses = tmp_path / "masses.csv"
+    masses.write_text("id,mass_kg\n7412,abc\n7817,-5\n", encoding="utf-8")
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(f'[catalog]\npath = {json.dumps(str(shared_file(TLE)))}\n'
+                        f'values = "csi"\nmasses = {json.dumps(str(masses))}\n',
+                        encoding="utf-8")  # fmt: skip
+    with pytest.raises(ScenarioError) as err:
+        Scenario.load(scenario)
+    text = str(err.value)
+    assert "catalog.masses" in text and "line 2, field mass_kg" in text and "'abc'" in text
+    assert "line 3" in text and "'-5'" in text
+    masses.write_text("id,mass\n7412,3\n", encoding="utf-8")
+    with pytest.raises(ScenarioError, match="a masses file needs the columns 'id' and 'mass_kg'"):
+        Scenario.load(scenario)
