@@ -50,8 +50,6 @@ from .rates import propagated_mean_state
 from .thrust import Thrust
 from .track import Track
 
-THRUST_KINDS = ("spiral_out", "plane_change", "spiral_in")
-"""Kinds of the thrust arcs in ``maneuvers.csv``."""
 TRIMS = (0.5, 0.2, 0.05, 0.01)
 """When the coast's mean motion is trimmed: at these fractions of the coast left."""
 
