@@ -60,6 +60,10 @@ def phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, accel, factors, bo
     point's and the phased leg's costs in the flight's mean model, whether it arrives in
     time, and a note when no phasing was found."""
     a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
+    # the plan coasts at the origin's or the target's inclination: the one flown is the
+    # vehicle's, or the target's as SGP4 flies it (the catalog's differ from these mean
+    # ones by up to 0.01 deg: 0.1 deg of RAAN over a 200-day coast)
+    i_plan = target.inc if abs(i_plan - target.inc) < abs(i_plan - origin.inc) else origin.inc
     consts = dict(consts, drift_factors=factors, laps=leg.laps)
     point = low_thrust_leg_at(origin, target, t_ready, a_plan, i_plan, accel, **consts)
     note = None

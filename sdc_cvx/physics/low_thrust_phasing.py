@@ -188,11 +188,11 @@ def low_thrust_leg_at(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, i
 def as_leg_plan(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, inc_drift,
                 leg: dict) -> LowThrustLegPlan:  # fmt: skip
     """The epochs of one leg of :func:`low_thrust_leg_at` (scalars): the plane change
-    right after spiral A when the coast has the target's inclination, else right before
-    spiral D (:mod:`~sdc_cvx.physics.low_thrust`)."""
+    right after spiral A when the coast has the target's inclination (the nearer of the
+    two), else right before spiral D (:mod:`~sdc_cvx.physics.low_thrust`)."""
     t_a, t_b, t_c, t_d = (float(leg[name]) for name in ("t_a", "t_b", "t_c", "t_d"))
     t0 = float(t_depart)
-    plane_first = bool(np.isclose(inc_drift, target.inc)) and t_b > 0.0
+    plane_first = abs(inc_drift - target.inc) < abs(inc_drift - origin.inc) and t_b > 0.0
     coast_start = t0 + t_a + (t_b if plane_first else 0.0)
     coast_end = coast_start + t_c
     plane_start = t0 + t_a if plane_first else coast_end
