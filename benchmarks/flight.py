@@ -118,7 +118,8 @@ def report(flight) -> dict:
                                                                               "correction")}
     print(f"flown by kind: transfers {split['transfers']:.2f}, trims {split['trims']:.2f} "
           f"({counts['trim']} impulses), corrections {split['corrections']:.2f} m/s "
-          f"({counts['correction']} impulses)")  # fmt: skip
+          f"({counts['correction']} manoeuvres: impulses, or a low-thrust vehicle's "
+          "arcs)")  # fmt: skip
     for note in flight.notes:
         print(f"note: {note}")
     ratio = flight.flown_dv_mps / flight.plan_dv_mps

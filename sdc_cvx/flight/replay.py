@@ -77,6 +77,12 @@ from .rates import (
     propagated_mean_state,
 )
 from .result import Flight, Rendezvous
+from .thrust_corrections import (
+    thrust_eccentricity,
+    thrust_phase,
+    thrust_plane,
+    thrust_semi_major_axis,
+)
 from .track import Track
 
 CORRECTION_DAYS = 0.6
@@ -298,7 +304,7 @@ def _fly_leg(track: Track, k, step: dict, origin: MeanOrbit, accel, factors, eph
     else:
         out = thrust_legs.fly_leg(track, k + 1, step["phased"], goal_orbit, accel, model, pole,
                                   ephemeris)  # fmt: skip
-    return _rendezvous(track, k, out, goal_orbit, ephemeris, model, pole)
+    return _rendezvous(track, k, out, goal_orbit, ephemeris, model, pole, accel)
 
 
 def _impulses(track: Track, leg, epochs, origin: MeanOrbit, a_drift, i_drift, goal_orbit,
@@ -344,15 +350,21 @@ def _impulses(track: Track, leg, epochs, origin: MeanOrbit, a_drift, i_drift, go
     return out
 
 
-def _rendezvous(track: Track, k, out: list, goal_orbit, ephemeris, model: ForceModel,
-                pole) -> dict:  # fmt: skip
-    """The arrival measured, then the corrections that close what is left."""
+def _rendezvous(track: Track, k, out: list, goal_orbit, ephemeris, model: ForceModel, pole,
+                accel=None) -> dict:  # fmt: skip
+    """The arrival measured, then the corrections that close what is left (a low-thrust
+    vehicle's as thrust arcs, :mod:`~sdc_cvx.flight.thrust_corrections`)."""
     leg = k + 1
     differences = _differences(track, goal_orbit, model, pole)
-    out += correct_eccentricity(track, leg, debris_eccentricity(ephemeris, k + 1, track.t, model),
-                                model, pole)  # fmt: skip
-    out.append(correct_plane(track, leg, ephemeris, k + 1, model, pole))
-    out += correct_phase(track, leg, ephemeris, k + 1, model, pole)
+    if accel is not None:
+        for correct in (thrust_eccentricity, thrust_plane, thrust_semi_major_axis,
+                        thrust_phase):  # fmt: skip
+            out += correct(track, leg, ephemeris, k + 1, accel, model, pole)
+    else:
+        wanted = debris_eccentricity(ephemeris, k + 1, track.t, model)
+        out += correct_eccentricity(track, leg, wanted, model, pole)
+        out.append(correct_plane(track, leg, ephemeris, k + 1, model, pole))
+        out += correct_phase(track, leg, ephemeris, k + 1, model, pole)
     r_d, v_d = ephemeris.state(k + 1, np.array([track.t]))
     meeting = differences | {
         "epoch_s": track.t,  # the rendezvous: the vehicle on the debris' orbit

@@ -15,11 +15,12 @@ propagator with the vehicle's constant acceleration ``f``
    the end of the leg, the rest of the leg flown ahead at each trim (:func:`_coast`);
 4. ``spiral_in``: tangential thrust from the mean radius reached to the debris' (its orbit
    averaged as SGP4 flies it), then ``arrive``, the small impulse onto that averaged
-   radius, and the corrections of :mod:`~sdc_cvx.flight.corrections`.
+   radius, and the corrections, thrust arcs too
+   (:mod:`~sdc_cvx.flight.thrust_corrections`).
 
-The trims, ``arrive`` and the corrections are flown as impulses: centimetres to a few
-metres per second, which ``f`` delivers in minutes to hours (a thrust arc that short
-against an orbit acts as an impulse to first order); :func:`impulse_note` says how long.
+The trims and ``arrive`` are flown as impulses: millimetres to centimetres per second,
+which ``f`` delivers in seconds to minutes (an arc that short against an orbit acts as an
+impulse); :func:`impulse_note` says how long.
 
 References
 ----------
@@ -37,6 +38,7 @@ import numpy as np
 from ..physics.elements import secular_rates
 from ..physics.impulses import with_horizontal_speed
 from ..physics.low_thrust_phasing import (
+    DELAYS_DAYS,
     LowThrustLegPlan,
     as_leg_plan,
     low_thrust_leg_at,
@@ -44,10 +46,11 @@ from ..physics.low_thrust_phasing import (
 )
 from ..physics.orbits import SECONDS_PER_DAY, circular_speed
 from ..physics.phasing import MeanOrbit
-from .corrections import aim_at
+from .corrections import aim_at, debris_orbit, eccentricity_vector, in_node_frame
 from .propagation import ForceModel
 from .rates import propagated_mean_state
 from .thrust import Thrust
+from .thrust_corrections import thrust_eccentricity, thrust_semi_major_axis
 from .track import Track
 
 TRIMS = (0.5, 0.2, 0.05, 0.01)
@@ -64,8 +67,13 @@ def phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, accel, factors, bo
     # vehicle's, or the target's as SGP4 flies it (the catalog's differ from these mean
     # ones by up to 0.01 deg: 0.1 deg of RAAN over a 200-day coast)
     i_plan = target.inc if abs(i_plan - target.inc) < abs(i_plan - origin.inc) else origin.inc
-    consts = dict(consts, drift_factors=factors, laps=leg.laps)
-    point = low_thrust_leg_at(origin, target, t_ready, a_plan, i_plan, accel, **consts)
+    # the plan's own departure is tried too: a vehicle ready early (an early arrival) that
+    # left at once would find the RAANs where the plan does not have them
+    early = (leg.departure_day * SECONDS_PER_DAY - t_ready) / SECONDS_PER_DAY
+    delays = tuple(sorted(set(DELAYS_DAYS) | ({float(early)} if early > 0 else set())))
+    consts = dict(consts, drift_factors=factors, laps=leg.laps, delays_days=delays)
+    point = low_thrust_leg_at(origin, target, t_ready, a_plan, i_plan, accel,
+                              **{k: v for k, v in consts.items() if k != "delays_days"})
     note = None
     try:
         phased, in_time = phase_low_thrust_leg(origin, target, t_ready, a_plan, i_plan, accel,
@@ -111,6 +119,8 @@ def fly_leg(track: Track, leg: int, phased: LowThrustLegPlan, goal_orbit, accel:
     plane_first = phased.plane_seconds > 0.0 and phased.plane_start < phased.coast_start
     if plane_first:
         out.append(_plane_change(track, leg, goal_orbit.inc, accel, model, pole))
+    out += _coast_eccentricity(track, leg, phased, goal_orbit, accel, model, pole,
+                               ephemeris)  # fmt: skip
 
     def rest(flown: Track) -> list:  # what follows the coast
         arcs = []
@@ -123,6 +133,38 @@ def fly_leg(track: Track, leg: int, phased: LowThrustLegPlan, goal_orbit, accel:
     out.append(track.impulse(leg, "arrive", aim_at(track, model, pole, goal_orbit.a,
                                                    track.normal)))  # fmt: skip
     return [m for m in out if m is not None]
+
+
+def _coast_eccentricity(track: Track, leg: int, phased: LowThrustLegPlan, goal_orbit,
+                        accel: float, model: ForceModel, pole, ephemeris) -> list:  # fmt: skip
+    """At the start of a coast long enough for it, the eccentricity the debris will have at
+    the arrival, turned back by the apsides' rotation on the coast (first-order J2 rate
+    of the coast orbit, ``d(omega)/dt``, in the frame of each plane's node: the RAANs meet
+    at the arrival), then the coast's radius again (the arcs leave a little ``da``).
+    Matching the eccentricity takes days at low thrust, ``pi V |de| / (4 f)``; done on the
+    coast it delays nothing, and what is left is closed after the arrival."""
+    r_d, v_d = debris_orbit(ephemeris, leg, phased.arrive, model)
+    goal = in_node_frame(np.mean(eccentricity_vector(r_d, v_d, mu=model.mu), axis=0),
+                         goal_orbit.normal, pole)  # fmt: skip
+    needed = np.pi * circular_speed(phased.a_drift, mu=model.mu) * np.linalg.norm(goal) / (
+        4.0 * accel)  # fmt: skip
+    if phased.coast_end - track.t < needed + 2.0 * SECONDS_PER_DAY:
+        return []  # no room: after the arrival
+    rate = secular_rates(phased.a_drift, 0.0, phased.inc_drift, j2=model.j2, mu=model.mu,
+                         r_eq=model.r_eq).argp  # fmt: skip
+
+    def wanted(t):
+        turn = -rate * (phased.arrive - t)
+        x, y = (np.cos(turn) * goal[0] - np.sin(turn) * goal[1],
+                np.sin(turn) * goal[0] + np.cos(turn) * goal[1])
+        normal = track.normal
+        node = np.cross(pole, normal)
+        node /= np.linalg.norm(node)
+        return x * node + y * np.cross(normal, node)
+
+    done = thrust_eccentricity(track, leg, ephemeris, leg, accel, model, pole, wanted=wanted)
+    return done + thrust_semi_major_axis(track, leg, ephemeris, leg, accel, model, pole,
+                                         goal_m=phased.a_drift)
 
 
 def _coast(track: Track, leg: int, t_leave: float, rest, ephemeris, model: ForceModel,
@@ -165,6 +207,5 @@ def _coast(track: Track, leg: int, t_leave: float, rest, ephemeris, model: Force
 def impulse_note(maneuvers, accel: float) -> str:
     """What the impulses of a low-thrust flight stand for: their ΔV and thrust time."""
     dv = sum(m.dv_mps for m in maneuvers if m.end_s is None)
-    return (f"low thrust: the trims, arrivals and corrections ({dv:.2f} m/s) are flown as "
-            f"impulses; at {accel:g} m/s^2 they take {dv / accel / 3600.0:.1f} h of thrust "
-            "in all")  # fmt: skip
+    return (f"low thrust: the trims and arrivals ({dv:.3f} m/s) are flown as impulses; at "
+            f"{accel:g} m/s^2 they take {dv / accel:.0f} s of thrust in all")  # fmt: skip

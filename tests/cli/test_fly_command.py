@@ -254,7 +254,8 @@ def test_run_fly_writes_the_flight_folder(tmp_path):
 @pytest.mark.slow
 @pytest.mark.requires_shared_data(TLE)
 def test_a_low_thrust_plan_flies_its_spirals_and_plane_changes_as_thrust_arcs(tmp_path):
-    """The plan's spirals and plane changes, flown as arcs of the vehicle's acceleration:
+    """The plan's spirals and plane changes, and the corrections after each arrival, flown
+    as arcs of the vehicle's acceleration (only trims and arrivals of cm/s are impulses):
     each arc's ΔV is that acceleration times its duration, each leg's arcs cost the plan's
     leg plus its phasing (the model's ΔV to the debris' orbits as flown), and they bring
     the vehicle onto the debris' plane (the inclination and RAAN differences at arrival,
@@ -278,22 +279,25 @@ def test_a_low_thrust_plan_flies_its_spirals_and_plane_changes_as_thrust_arcs(tm
     maneuvers = pd.read_csv(folder / "flight" / "maneuvers.csv")
     rendezvous = pd.read_csv(folder / "flight" / "rendezvous.csv")
     arcs = maneuvers[maneuvers["end_utc"].notna()]
-    assert set(arcs["kind"]) >= {"spiral_out", "spiral_in"}
-    assert set(arcs["kind"]) <= {"spiral_out", "plane_change", "spiral_in"}
+    assert set(arcs["kind"]) >= {"spiral_out", "spiral_in", "correction"}
+    assert set(arcs["kind"]) <= {"spiral_out", "plane_change", "spiral_in", "correction"}
+    impulses = maneuvers[maneuvers["end_utc"].isna()]  # trims and arrivals only, cm/s
+    assert set(impulses["kind"]) <= {"trim", "arrive"} and (impulses["dv_mps"] < 0.5).all()
     assert (arcs["accel_mps2"] == 1e-4).all() and arcs["law"].str.len().gt(0).all()
     seconds = (pd.to_datetime(arcs["end_utc"]) - pd.to_datetime(arcs["epoch_utc"]))
     assert arcs["dv_mps"].to_numpy() == pytest.approx(
         1e-4 * seconds.dt.total_seconds().to_numpy(), rel=1e-6)  # fmt: skip
+    transfers = arcs[arcs["kind"] != "correction"]
     for k, leg in enumerate(legs, start=1):
-        flown = arcs.loc[arcs["leg"] == k, "dv_mps"].sum()
+        flown = transfers.loc[transfers["leg"] == k, "dv_mps"].sum()
         expected = leg["dv_mps"] + rendezvous["phasing_dv_mps"].iloc[k - 1]
         assert flown == pytest.approx(expected, rel=0.03, abs=0.5), k
     assert (rendezvous["di_deg"].abs() < 0.01).all(), rendezvous
     assert (rendezvous["draan_deg"].abs() < 0.05).all(), rendezvous
     assert (rendezvous["miss_km"] < 100.0).all()
     flight = json.loads((folder / "flight" / "flight.json").read_text(encoding="utf-8"))
-    assert flight["status"] == "flown"
-    assert any("flown as impulses" in note for note in flight["notes"])
+    assert flight["status"] in {"flown", "late"}  # late: the eccentricity takes days (README)
+    assert any("trims and arrivals" in note for note in flight["notes"])
 
 
 # -- a campaign folder -------------------------------------------------------------------

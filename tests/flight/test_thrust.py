@@ -83,3 +83,44 @@ def test_a_thrust_arc_is_a_manoeuvre_of_its_acceleration_times_its_duration():
     assert arc.dv_rtn[1] == pytest.approx(F * 3600.0, rel=1e-3)  # along the velocity
     assert np.linalg.norm(arc.dv_gcrf) < arc.dv_mps  # the direction turns with the orbit
     assert track.thrust(3600.0, Thrust(F, "tangential"), KEPLER, POLE, 1, "x") is None
+
+
+def eccentricity_vector(r, v):
+    h = np.cross(r, v)
+    return np.cross(v, h) / MU - r / np.linalg.norm(r)
+
+
+def test_tangential_thrust_switched_by_a_direction_moves_the_eccentricity_along_it():
+    """Gauss on a near-circular orbit: de/dt = 2 f_t r_hat / V; with f_t = f sign(r . d)
+    the mean over an orbit is (4/pi) f / V along d, and a does not change."""
+    a0 = R + 800e3
+    r, v = circular(a0, np.radians(98.6))
+    h = np.cross(r, v) / np.linalg.norm(np.cross(r, v))
+    d = np.cross(h, r) / np.linalg.norm(np.cross(h, r))  # in the plane, 90 deg ahead
+    seconds = 10 * 2 * np.pi * np.sqrt(a0**3 / MU)
+    arc = propagate(r, v, 0.0, seconds, KEPLER, pole=POLE,
+                    thrust=Thrust(F, "tangential", 1.0, tuple(d)))  # fmt: skip
+    change = eccentricity_vector(arc.r1, arc.v1) - eccentricity_vector(r, v)
+    expected = 4 / np.pi * F / np.sqrt(MU / a0) * seconds
+    assert change @ d == pytest.approx(expected, rel=5e-3)
+    assert np.linalg.norm(change - (change @ d) * d) < 0.02 * expected
+    assert elements(arc.r1, arc.v1)[0] == pytest.approx(a0, abs=20.0)
+
+
+def test_normal_thrust_switched_by_a_direction_turns_the_plane_towards_a_normal():
+    """dh/dt = r x f: with f_n = f sign(r . (h x n)) the normal moves towards n at
+    (2/pi) f / V [rad/s] on average."""
+    a0 = R + 800e3
+    r, v = circular(a0, np.radians(60.0))
+    h = np.cross(r, v) / np.linalg.norm(np.cross(r, v))
+    tilt = np.cross(h, [0.3, -0.5, 0.2])
+    n = h + 0.05 * tilt / np.linalg.norm(tilt)
+    n /= np.linalg.norm(n)
+    towards = (n - (n @ h) * h) / np.linalg.norm(n - (n @ h) * h)
+    seconds = 10 * 2 * np.pi * np.sqrt(a0**3 / MU)
+    arc = propagate(r, v, 0.0, seconds, KEPLER, pole=POLE,
+                    thrust=Thrust(F, "plane", 1.0, tuple(np.cross(h, towards))))  # fmt: skip
+    h1 = np.cross(arc.r1, arc.v1) / np.linalg.norm(np.cross(arc.r1, arc.v1))
+    turned = np.arccos(np.clip(h1 @ h, -1, 1))
+    assert turned == pytest.approx(2 / np.pi * F / np.sqrt(MU / a0) * seconds, rel=5e-3)
+    assert np.arccos(np.clip(h1 @ n, -1, 1)) < np.arccos(np.clip(h @ n, -1, 1)) - 0.9 * turned
