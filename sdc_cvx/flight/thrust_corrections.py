@@ -18,7 +18,9 @@ chosen points of the orbit.  A low-thrust vehicle flies each as an arc of its ac
 
 Each is measured on mean (one-orbit averaged) states before it is flown; the first two in
 arcs of at most :data:`CHUNK_S`, measured again between them (the apsides and nodes turn
-under J2 meanwhile), the third in :data:`PHASE_PASSES` passes.
+under J2 meanwhile), the last two in up to :data:`PHASE_PASSES` passes.  The first and
+third also serve the coast (:func:`~sdc_cvx.flight.thrust_legs.fly_leg`), with the
+eccentricity and radius it wants.
 
 References
 ----------
