@@ -278,7 +278,8 @@ class Flight:
                   comments=(f"sdc_cvx flown plan {' -> '.join(self.plan.catalog.frame['id'])}",
                             f"force model {self.force.describe()}",
                             "zonal terms about the true pole of date (TEME z axis) at the "
-                            "middle of each leg; impulses in maneuvers.csv"))  # fmt: skip
+                            "middle of each leg; manoeuvres (impulses, thrust arcs) in "
+                            "maneuvers.csv"))  # fmt: skip
         from .plot import flight_figure  # matplotlib only when the files are written
 
         flight_figure(self, folder / "flight.png")
