@@ -111,6 +111,20 @@ def test_a_folder_that_does_not_exist(tmp_path):
 
 
 @pytest.mark.slow
+def test_a_low_thrust_plan_without_its_acceleration_is_refused(paper_run, tmp_path):
+    """A solution.json edited (or from another tool) that says low thrust but not how much:
+    refused, naming the file and the field, before any catalog is read."""
+    folder = copy_of(paper_run, tmp_path)
+    path = folder / "solution.json"
+    data = json.loads(path.read_text(encoding="utf-8"))
+    data["mission"]["transfer"] = "low-thrust"
+    data["transfer"] = {"transfer": "low-thrust"}
+    path.write_text(json.dumps(data), encoding="utf-8")
+    assert_refused(cli_process("fly", str(folder)), str(path), "transfer.accel_mps2")
+    assert_no_flight(folder)
+
+
+@pytest.mark.slow
 def test_the_paper_case_has_no_dates_to_fly_from(paper_run):
     result = cli_process("fly", str(paper_run))
     assert_refused(result, "paper Table 5", "no epochs", "start date")
