@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.impulses import rotated_into, with_horizontal_speed
+from ..physics.orbits import SECONDS_PER_DAY
 from .propagation import ForceModel, averaged_orbit, propagate
 from .rates import SAMPLES, mean_state, propagated_mean_state
 from .result import Maneuver
@@ -37,6 +38,8 @@ SMALLEST_DE = 1e-5
 """Eccentricity differences below this are left alone (0.04 m/s at 800 km)."""
 SMALLEST_GAP_M = 10.0
 """Along-track gaps below this [m] are left to the proximity operations."""
+TRIMS = (0.5, 0.2, 0.05, 0.01)
+"""When a coast's mean motion is trimmed: at these fractions of the coast left."""
 AIM_SHOTS = 3
 """One-orbit shots of a circularising impulse on the averaged orbit it aims at."""
 PHASING_REVOLUTIONS = 5
@@ -103,6 +106,27 @@ def node_split(da_over_a: float, along_node: float, at_node_sign: float) -> floa
     room = abs(da_over_a)
     de = float(np.clip(along_node, -room, room))
     return 0.25 * (da_over_a + at_node_sign * de)
+
+
+def trim_epochs(start: float, t_leave: float):
+    """The epochs [s] of the trims of a coast from ``start`` to ``t_leave`` (:data:`TRIMS`;
+    none in its first half day nor in its last quarter day)."""
+    span = t_leave - start
+    for fraction in TRIMS:
+        t_trim = t_leave - fraction * span
+        if t_trim < start + 0.5 * SECONDS_PER_DAY or t_leave - t_trim < 0.25 * SECONDS_PER_DAY:
+            continue
+        yield t_trim
+
+
+def trim(track: Track, leg: int, da: float, a: float) -> Maneuver:
+    """The tangential impulse that changes the mean semi-major axis ``a`` [m] by ``da``
+    [m] (vis-viva: ``dv = v da / (2 a)``)."""
+    r_hat = track.r / np.linalg.norm(track.r)
+    horizontal = np.linalg.norm(track.v - np.dot(track.v, r_hat) * r_hat)
+    dv = 0.5 * np.linalg.norm(track.v) * da / a
+    return track.impulse(leg, "trim", with_horizontal_speed(track.r, track.v, track.normal,
+                                                            horizontal + dv))  # fmt: skip
 
 
 def aim_at(track: Track, model: ForceModel, pole, a_goal, normal) -> np.ndarray:

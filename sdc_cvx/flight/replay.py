@@ -63,6 +63,8 @@ from .corrections import (
     in_node_frame,
     mean_eccentricity,
     node_split,
+    trim,
+    trim_epochs,
 )
 from .ephemeris import DebrisEphemeris
 from .frames import earth_pole_gcrf
@@ -90,8 +92,6 @@ CORRECTION_DAYS = 0.6
 less stay at its debris aims to arrive that much earlier."""
 HOPELESS_DAYS = 30.0
 """A leg that cannot arrive within this many days after T_max is not flown."""
-TRIMS = (0.5, 0.2, 0.05, 0.01)
-"""When the drift's mean motion is trimmed: at these fractions of the drift left."""
 
 
 def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris=None,
@@ -258,7 +258,8 @@ def _tangential(track: Track, normal, a_to, a_from, de_along_node, model, pole):
 def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
            pole) -> list:  # fmt: skip
     """Coast on the drift orbit to ``t_leave`` [s], trimming its mean motion on the way so
-    that the vehicle is at the node there, as the phasing has it (:data:`TRIMS`).
+    that the vehicle is at the node there, as the phasing has it
+    (:data:`~sdc_cvx.flight.corrections.TRIMS`).
 
     At each trim the vehicle's mean state (one orbit averaged) and its measured rates
     predict its argument of latitude at ``t_leave``; a tangential impulse changes the
@@ -267,11 +268,7 @@ def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
     motion would put the vehicle 10 km off after half a year of coasting.
     """
     trims = []
-    start, span = track.t, t_leave - track.t
-    for fraction in TRIMS:
-        t_trim = t_leave - fraction * span
-        if t_trim < start + 0.5 * SECONDS_PER_DAY or t_leave - t_trim < 0.25 * SECONDS_PER_DAY:
-            continue
+    for t_trim in trim_epochs(track.t, t_leave):
         track.coast(t_trim, model, pole)
         now = propagated_mean_state(track.r, track.v, track.t, model, pole)
         rate = secular_rates(now.a, 0.0, now.inc, j2=model.j2, mu=model.mu,
@@ -279,12 +276,7 @@ def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
         predicted = now.arglat + rate * (t_leave - now.t)
         error = np.pi * np.round(predicted / np.pi) - predicted
         da = -2.0 / 3.0 * now.a * (error / (t_leave - track.t)) / rate
-        speed = np.linalg.norm(track.v)
-        r_hat = track.r / np.linalg.norm(track.r)
-        horizontal = np.linalg.norm(track.v - np.dot(track.v, r_hat) * r_hat)
-        dv = 0.5 * speed * da / now.a  # vis-viva, tangential
-        trims.append(track.impulse(leg, "trim", with_horizontal_speed(
-            track.r, track.v, track.normal, horizontal + dv)))  # fmt: skip
+        trims.append(trim(track, leg, da, now.a))
     track.coast(t_leave, model, pole)
     return trims
 

@@ -36,7 +36,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.elements import secular_rates
-from ..physics.impulses import with_horizontal_speed
 from ..physics.low_thrust_phasing import (
     DELAYS_DAYS,
     LowThrustLegPlan,
@@ -46,15 +45,19 @@ from ..physics.low_thrust_phasing import (
 )
 from ..physics.orbits import SECONDS_PER_DAY, circular_speed
 from ..physics.phasing import MeanOrbit
-from .corrections import aim_at, debris_orbit, eccentricity_vector, in_node_frame
+from .corrections import (
+    aim_at,
+    debris_orbit,
+    eccentricity_vector,
+    in_node_frame,
+    trim,
+    trim_epochs,
+)
 from .propagation import ForceModel
 from .rates import propagated_mean_state
 from .thrust import Thrust
 from .thrust_corrections import thrust_eccentricity, thrust_semi_major_axis
 from .track import Track
-
-TRIMS = (0.5, 0.2, 0.05, 0.01)
-"""When the coast's mean motion is trimmed: at these fractions of the coast left."""
 
 
 def phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, accel, factors, bounds, on_time,
@@ -169,7 +172,8 @@ def _coast_eccentricity(track: Track, leg: int, phased: LowThrustLegPlan, goal_o
 
 def _coast(track: Track, leg: int, t_leave: float, rest, ephemeris, model: ForceModel,
            pole) -> list:  # fmt: skip
-    """Coast to ``t_leave`` [s], trimming the mean motion on the way (:data:`TRIMS`) so
+    """Coast to ``t_leave`` [s], trimming the mean motion on the way
+    (:data:`~sdc_cvx.flight.corrections.TRIMS`) so
     that the vehicle meets debris ``leg`` at the end of ``rest`` (the thrust arcs after the
     coast).  At each trim the rest of the leg is flown ahead on a copy of the track: the
     angle from the vehicle to the debris in its plane at that arrival ``t_a``, ``gap``, is
@@ -179,11 +183,7 @@ def _coast(track: Track, leg: int, t_leave: float, rest, ephemeris, model: Force
     errors, where a model of their argument of latitude would miss by a tenth of a
     radian, are then flown, not modelled."""
     trims = []
-    start, span = track.t, t_leave - track.t
-    for fraction in TRIMS:
-        t_trim = t_leave - fraction * span
-        if t_trim < start + 0.5 * SECONDS_PER_DAY or t_leave - t_trim < 0.25 * SECONDS_PER_DAY:
-            continue
+    for t_trim in trim_epochs(track.t, t_leave):
         track.coast(t_trim, model, pole)
         ahead = Track(track.t, track.r.copy(), track.v.copy())
         ahead.coast(t_leave, model, pole)
@@ -195,11 +195,7 @@ def _coast(track: Track, leg: int, t_leave: float, rest, ephemeris, model: Force
         rate = secular_rates(now.a, 0.0, now.inc, j2=model.j2, mu=model.mu,
                              r_eq=model.r_eq).arglat  # fmt: skip
         da = -2.0 / 3.0 * now.a * (gap / (ahead.t - track.t)) / rate
-        r_hat = track.r / np.linalg.norm(track.r)
-        horizontal = np.linalg.norm(track.v - np.dot(track.v, r_hat) * r_hat)
-        dv = 0.5 * np.linalg.norm(track.v) * da / now.a  # vis-viva, tangential
-        trims.append(track.impulse(leg, "trim", with_horizontal_speed(
-            track.r, track.v, track.normal, horizontal + dv)))  # fmt: skip
+        trims.append(trim(track, leg, da, now.a))
     track.coast(t_leave, model, pole)
     return trims
 

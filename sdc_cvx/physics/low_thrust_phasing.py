@@ -41,12 +41,12 @@ from .elements import secular_rates
 from .low_thrust import plane_change_dv, plane_change_raan_change, spiral_dv, spiral_raan_change
 from .orbits import J2, MU_EARTH, R_EARTH, circular_speed, wrap_angle
 from .phasing import (
-    BISECTIONS,
     LATE_COST_MPS_PER_DAY,
     PHASE_TOL_RAD,
     RADIUS_POINTS,
     RADIUS_SPANS_M,
     MeanOrbit,
+    grid_zeros,
 )
 
 TWO_PI = 2.0 * np.pi
@@ -202,24 +202,6 @@ def as_leg_plan(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, inc_dri
                             float(leg["dv"]), float(leg["phase_error"]))  # fmt: skip
 
 
-def _zeros(error_at, grid, delays):
-    """Drift radii where the phase error vanishes, for each departure delay: every sign
-    change on ``grid`` (not a jump at +/- pi nor a jump of the coast by a lap) refined by
-    bisection; and their delays."""
-    error = error_at(delays[:, None], grid[None, :])
-    cross = (np.sign(error[:, :-1]) != np.sign(error[:, 1:])) & (
-        np.abs(error[:, :-1] - error[:, 1:]) < np.pi)  # fmt: skip
-    rows, cols = np.nonzero(cross)
-    lo, hi, e_lo = grid[cols], grid[cols + 1], error[rows, cols]
-    for _ in range(BISECTIONS):  # on every bracket at once
-        mid = 0.5 * (lo + hi)
-        e_mid = error_at(delays[rows], mid)
-        same = np.sign(e_mid) == np.sign(e_lo)
-        lo, e_lo = np.where(same, mid, lo), np.where(same, e_mid, e_lo)
-        hi = np.where(same, hi, mid)
-    return 0.5 * (lo + hi), delays[rows]
-
-
 def phase_low_thrust_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
                          accel, *, laps=0, drift_factors=(1.0, 1.0), a_bounds=(0.0, np.inf),
                          latest_arrival=np.inf, late_cost=LATE_COST_MPS_PER_DAY,
@@ -271,8 +253,8 @@ def phase_low_thrust_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift,
         low, high = max(a_drift - span, a_bounds[0]), min(a_drift + span, a_bounds[1])
         grid = np.linspace(low, high, RADIUS_POINTS)
         for delay in np.asarray(delays_days, dtype=float) * 86400.0:
-            roots, delays = _zeros(lambda d, r: leg_at(d, r)["phase_error"], grid,
-                                   np.array([delay]))  # fmt: skip
+            roots, delays = grid_zeros(lambda d, r: leg_at(d, r)["phase_error"], grid,
+                                       np.array([delay]))  # fmt: skip
             good = np.abs(leg_at(delays, roots)["phase_error"]) < PHASE_TOL_RAD
             if good.any():
                 found.append((roots[good], delays[good]))

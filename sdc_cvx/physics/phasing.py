@@ -246,24 +246,34 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     }
 
 
-def _zeros(origin, target, t_ready, grid, inc_drift, k, consts):
-    """Drift radii where the phase error vanishes, for departure nodes ``k``: every sign
-    change on ``grid`` (not the jump at +/- pi) refined by bisection; and their nodes."""
-    error = leg_at(origin, target, t_ready, grid[None, :], inc_drift, k[:, None], costs=False,
-                   **consts)["phase_error"]  # fmt: skip
+def grid_zeros(error_at, grid, rows):
+    """Where ``error_at(row, x)`` vanishes along ``grid`` for each of ``rows``: every sign
+    change between neighbours (not a jump at +/- pi) refined by :data:`BISECTIONS`
+    halvings, all brackets at once; the zeros and their rows."""
+    error = error_at(rows[:, None], grid[None, :])
     cross = (np.sign(error[:, :-1]) != np.sign(error[:, 1:])) & (
         np.abs(error[:, :-1] - error[:, 1:]) < np.pi)  # fmt: skip
-    rows, cols = np.nonzero(cross)
-    rows = k[rows]
-    lo, hi, e_lo = grid[cols], grid[cols + 1], error[np.nonzero(cross)]
-    for _ in range(BISECTIONS):  # on every bracket at once
+    at, cols = np.nonzero(cross)
+    lo, hi, e_lo = grid[cols], grid[cols + 1], error[at, cols]
+    rows = rows[at]
+    for _ in range(BISECTIONS):
         mid = 0.5 * (lo + hi)
-        e_mid = leg_at(origin, target, t_ready, mid, inc_drift, rows, costs=False,
-                       **consts)["phase_error"]  # fmt: skip
+        e_mid = error_at(rows, mid)
         same = np.sign(e_mid) == np.sign(e_lo)
         lo, e_lo = np.where(same, mid, lo), np.where(same, e_mid, e_lo)
         hi = np.where(same, hi, mid)
     return 0.5 * (lo + hi), rows
+
+
+def _zeros(origin, target, t_ready, grid, inc_drift, k, consts):
+    """Drift radii where the phase error vanishes, for departure nodes ``k``
+    (:func:`grid_zeros`); and their nodes."""
+
+    def error_at(node, radius):
+        return leg_at(origin, target, t_ready, radius, inc_drift, node, costs=False,
+                      **consts)["phase_error"]  # fmt: skip
+
+    return grid_zeros(error_at, grid, k)
 
 
 def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, *, laps=0,
