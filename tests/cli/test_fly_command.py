@@ -309,6 +309,15 @@ def test_a_low_thrust_plan_flies_its_spirals_and_plane_changes_as_thrust_arcs(tm
     assert (rendezvous["di_deg"].abs() < 0.01).all(), rendezvous
     assert (rendezvous["draan_deg"].abs() < 0.05).all(), rendezvous
     assert (rendezvous["miss_km"] < 100.0).all()
+    # trajectory.oem read back by the oem package: each thrust arc is a segment of its own
+    oem = pytest.importorskip("oem", reason="the independent OEM reader: pip install oem")
+    segments = list(oem.OrbitEphemerisMessage.open(folder / "flight" / "trajectory.oem"))
+    ends = [pd.Timestamp(list(seg.states)[-1].epoch.to_datetime(), tz="UTC") for seg in segments]
+    starts = [pd.Timestamp(list(seg.states)[0].epoch.to_datetime(), tz="UTC") for seg in segments]
+    gaps = [abs(b - a) for a, b in zip(ends[:-1], starts[1:], strict=True)]
+    assert max(gaps) < pd.Timedelta(microseconds=2)
+    for end in pd.to_datetime(arcs["end_utc"]):
+        assert min(abs(end - e) for e in ends) < pd.Timedelta(microseconds=2), end
     flight = json.loads((folder / "flight" / "flight.json").read_text(encoding="utf-8"))
     assert flight["status"] in {"flown", "late"}  # late: the eccentricity takes days (README)
     assert any("trims and arrivals" in note for note in flight["notes"])
