@@ -357,27 +357,33 @@ def _first_reach(p: Pieces, dates, pos, ahead, t_min):
     kink = np.minimum(np.maximum(raw, t1), t_end)
     kink_slope = np.where((raw > t1) & (raw < t_end), -d_slope,
                           np.where(raw >= t_end, t_end_slope, 0.0))  # fmt: skip
-    zero = np.zeros_like(w)
-    t, t_rate = np.stack([t1, kink, t_end]), np.stack([zero, kink_slope, t_end_slope])
-    short = t3 - t >= d_min
-    d_short, d_short_rate = np.where(short, t3 - t, d_min), np.where(short, -t_rate, d_slope)
-    extremes = []
-    for longest, pick in ((rel < 0, np.argmin), (rel >= 0, np.argmax)):
-        d = np.where(longest, t4 - t, d_short)
-        d_rate = np.where(longest, -t_rate, d_short_rate)
-        value = rel * d - p.g * t
-        slope = rel_slope * d + rel * d_rate - p.g * t_rate
-        k = pick(value, axis=0)[None]
-        extremes.append((np.take_along_axis(value, k, 0)[0], np.take_along_axis(slope, k, 0)[0]))
-    (low, low_slope), (high, high_slope) = extremes
+    # at each departure the largest value takes the longest duration where rel >= 0 and
+    # the shortest where rel < 0, the least value the other one
+    negative = rel < 0
+    for k, (t, t_rate) in enumerate(((t1, 0.0), (kink, kink_slope), (t_end, t_end_slope))):
+        short = t3 - t >= d_min
+        d_short = np.where(short, t3 - t, d_min)
+        v_long = rel * (t4 - t) - p.g * t
+        s_long = rel_slope * (t4 - t) - (rel + p.g) * t_rate
+        v_short = rel * d_short - p.g * t
+        s_short = rel_slope * d_short + rel * np.where(short, -t_rate, d_slope) - p.g * t_rate
+        v_low, s_low = np.where(negative, v_long, v_short), np.where(negative, s_long, s_short)
+        v_high, s_high = np.where(negative, v_short, v_long), np.where(negative, s_short, s_long)
+        if k == 0:
+            low, low_slope, high, high_slope = v_low, s_low, v_high, s_high
+            continue
+        less, more = v_low < low, v_high > high
+        low, low_slope = np.where(less, v_low, low), np.where(less, s_low, low_slope)
+        high, high_slope = np.where(more, v_high, high), np.where(more, s_high, high_slope)
     beta = p.beta(w) - p.gap0
     beta_slope = ahead * w6 * (8.0 * p.alpha * w + 7.0 * p.gamma0)
     lo, hi = beta + low, beta + high
     with np.errstate(invalid="ignore", divide="ignore"):
         rising = np.maximum(beta_slope, 0) + np.maximum(ahead * high_slope, 0)
         falling = np.maximum(-beta_slope, 0) + np.maximum(-ahead * low_slope, 0)
-        below = lo - TWO_PI * np.floor(lo / TWO_PI)
-        above = TWO_PI * np.ceil(hi / TWO_PI) - hi
+        # the proof counts a multiple within CLOSED_GAP_RAD of the enclosure as reached
+        below = np.maximum(lo - TWO_PI * np.floor(lo / TWO_PI) - CLOSED_GAP_RAD, 0.0)
+        above = np.maximum(TWO_PI * np.ceil(hi / TWO_PI) - hi - CLOSED_GAP_RAD, 0.0)
         reach = np.minimum(np.where(falling > 0, below / falling, np.inf),
                            np.where(rising > 0, above / rising, np.inf))  # fmt: skip
     return np.where(np.isnan(reach) | ~feasible, np.inf, reach)
