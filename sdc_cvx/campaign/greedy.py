@@ -18,6 +18,10 @@ from .result import GreedyCampaign
 PRIZE_FACTOR = 10.0
 """A debris that must be removed is worth this many times the dearest launch alone [m/s]:
 more than any mission's ΔV difference, so the search takes as many as it can."""
+REPAIR_PASSES = 6
+"""Greedy passes at most after greedy, where it found no campaign (:func:`repair`)."""
+REPAIR_BOOST = 0.5
+"""Prize added on a debris (in units of the base prize) each time a pass leaves it over."""
 
 
 def greedy_campaign(search, alone: list[Pricing]) -> GreedyCampaign:
@@ -30,11 +34,51 @@ def greedy_campaign(search, alone: list[Pricing]) -> GreedyCampaign:
         ``dv_mps`` None where a launch found no mission with the debris left, or
         required debris are left over (``why`` says which).
     """
+    return _greedy_pass(search, alone, np.ones(len(search.catalog)))
+
+
+def repair(search, alone: list[Pricing], greedy: GreedyCampaign,
+           tries: int = REPAIR_PASSES) -> None:  # fmt: skip
+    """Greedy passes again, until the pool holds a campaign, where debris must be removed.
+
+    Where greedy fails (a launch finds no mission among the debris the earlier ones
+    left), each new pass puts more prize on the debris the passes before left over
+    (squeaky wheel: Joslin and Clements, 1999), so that earlier missions take them.  Every
+    pass's missions join the pool, and the integer master may combine missions of
+    several passes: it is asked after each.  Stops at the first campaign, after
+    ``tries`` passes, or at the time limit.
+
+    References
+    ----------
+    .. [1] D. E. Joslin and D. P. Clements, "Squeaky wheel optimization", Journal of
+       Artificial Intelligence Research, 10, 353-373, 1999.
+    """
+    weight = np.ones(len(search.catalog))
+    left_over = list(greedy.left_over)
+    for attempt in range(2, tries + 2):
+        if search.plan is not None or not left_over or search.out_of_time():
+            return
+        weight[left_over] += REPAIR_BOOST
+        ids = ", ".join(search.catalog.ids[i] for i in left_over)
+        search.say(f"  no campaign yet: greedy pass {attempt}, more prize on the debris the "
+                   f"pass before left over ({ids})")  # fmt: skip
+        left_over = list(_greedy_pass(search, alone, weight, quiet=True).left_over)
+        search.master_plan()
+
+
+def _greedy_pass(search, alone, weight, quiet: bool = False):
+    """One greedy campaign, the prize on a required debris ``weight`` times the base one.
+
+    Returns
+    -------
+    GreedyCampaign
+    """
     removed: list[int] = []
     missions: list[Column] = []
     required = list(search.must)
     dearest = max((p.upper_mps for p in alone if np.isfinite(p.upper_mps)), default=1e3)
     capacity = [launch.mission.n for launch in search.launches]
+    say = (lambda line: None) if quiet else search.say
     for k, (launch, first) in enumerate(zip(search.launches, alone, strict=True)):
         if search.out_of_time():  # Ctrl-C or the limit: no greedy campaign, the pool stays
             return GreedyCampaign(None, tuple(missions), f"{search.limit_reached()} before "
@@ -49,7 +93,7 @@ def greedy_campaign(search, alone: list[Pricing]) -> GreedyCampaign:
             options = dict(exclude=removed)
             if left:  # a prize on each: the gap is then in m/s, not relative to the prizes
                 prices = np.zeros(len(search.catalog))
-                prices[left] = -PRIZE_FACTOR * dearest
+                prices[left] = -PRIZE_FACTOR * dearest * weight[left]
                 options |= dict(prices=prices, gap_rel=0.0,
                                 tol_mps=max(search.tol, search.gap_rel / 2 * dearest))
             result = search.price_all([(variant, search.unpriced(**options))])[0]
@@ -57,12 +101,14 @@ def greedy_campaign(search, alone: list[Pricing]) -> GreedyCampaign:
         if not result.columns:
             why = "time limit" if result.status == "no_plan" else "no mission flies"
             after = " with the debris the earlier missions left" if removed else ""
-            search.say(f"  greedy stops at {launch.label()}: {why}{after}")
-            return GreedyCampaign(None, tuple(missions), f"{launch.label()}: {why}{after}")
+            say(f"  greedy stops at {launch.label()}: {why}{after}")
+            return GreedyCampaign(None, tuple(missions), f"{launch.label()}: {why}{after}",
+                                  left_over=tuple(left) if result.status != "no_plan" else ())
         missions.append(result.columns[0])
         removed += list(result.columns[0].debris)
     if any(i not in removed for i in required):
-        return GreedyCampaign(None, tuple(missions), "must_remove debris left over")
+        return GreedyCampaign(None, tuple(missions), "must_remove debris left over",
+                              left_over=tuple(i for i in required if i not in removed))
     total = float(sum(c.dv_mps for c in missions))
-    search.say(f"  greedy campaign: {total:.2f} m/s")
+    say(f"  greedy campaign: {total:.2f} m/s")
     return GreedyCampaign(total, tuple(missions), "")

@@ -27,12 +27,16 @@ class GreedyCampaign:
     why : str
     paths : tuple of str
         Each mission's path, as text.
+    left_over : tuple of int
+        The debris that had to be removed and were still left where it failed (catalog
+        indices).
     """
 
     dv_mps: float | None
     missions: tuple = ()
     why: str = ""
     paths: tuple[str, ...] = ()
+    left_over: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)

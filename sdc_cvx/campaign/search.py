@@ -48,7 +48,7 @@ from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from ..planner.size_guard import size_problem
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
-from .greedy import greedy_campaign
+from .greedy import greedy_campaign, repair
 from .master import solve_ip, solve_lp
 from .pricing import (
     Column,
@@ -436,6 +436,8 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         alone = search.launches_alone()
         greedy = search.greedy(alone)
         search.master_plan()
+        if search.plan is None and greedy.left_over:
+            repair(search, alone, greedy)
         if search.plan is None and greedy.dv_mps is None and search.out_of_time():
             raise SolverFailure(f"{search.limit_reached()} before any campaign was found")
         estimate = search.upper if np.isfinite(search.upper) else sum(
@@ -484,7 +486,8 @@ def _solution(search: _Campaign, greedy: GreedyCampaign, seconds: float) -> Camp
         total_dv_mps=float(sum(m.total_dv_mps for m in missions)),
         lower_bound_mps=shown_bound(min(search.lower, search.upper)),
         status=status,
-        greedy=GreedyCampaign(greedy.dv_mps, greedy.missions, greedy.why, greedy_paths),
+        greedy=GreedyCampaign(greedy.dv_mps, greedy.missions, greedy.why, greedy_paths,
+                              greedy.left_over),
         history=tuple(search.history),
         columns=len(search.pool),
         pricings=search.pricings,

@@ -87,6 +87,12 @@ CASES = [
     ),
 ]
 
+REPAIRED = Case("remove-all-repaired", 6, 18, (0.0, 365.25, 730.5), (2, 2, 2),
+                (100.0, 100.0, 100.0), must_remove=tuple(f"S{k:03d}" for k in range(6)))
+"""Every debris must be removed, and greedy leaves two that no mission of the last launch
+removes together (found by a search over seeds)."""
+CASES.append(pytest.param(REPAIRED, id=REPAIRED.name))
+
 _BRUTE: dict = {}
 
 
@@ -180,3 +186,17 @@ def test_a_fractional_master_with_no_campaign_is_proven_infeasible():
     assert all(brute(case).per_launch)  # each launch flies alone
     with pytest.raises(MissionInfeasible, match="every mission that flies from each launch"):
         solve_campaign(case.catalog(), case.campaign(), workers=1)
+
+
+def test_where_greedy_leaves_debris_over_a_greedy_pass_that_weighs_them_finds_a_campaign():
+    """Squeaky wheel (campaign/greedy.repair): the debris greedy left over get more prize,
+    an earlier mission takes them, and a campaign is in hand before any round."""
+    best = brute(REPAIRED)
+    lines: list[str] = []
+    sol = solve_campaign(REPAIRED.catalog(), REPAIRED.campaign(), workers=1, gap=GAP,
+                         log=lines.append)  # fmt: skip
+    assert sol.greedy.dv_mps is None and len(sol.greedy.left_over) == 2
+    assert any("greedy pass 2" in line for line in lines)
+    after_greedy = next(line for line in lines if "launches alone and greedy:" in line)
+    assert "plan none yet" not in after_greedy, after_greedy
+    assert sol.total_dv_mps <= best.dv_mps * (1 + GAP) + EPS_MPS
