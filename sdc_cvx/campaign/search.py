@@ -6,7 +6,9 @@ The search (``docs/design.md`` §10), in named steps:
    launch priced alone (no prices): a launch with no flyable mission makes the campaign
    infeasible, said with its day.
 2. *Greedy* (the baseline): the best first mission, its debris removed, the best second
-   mission, and so on.  Its missions are columns too.
+   mission, and so on.  Its missions are columns too.  Where it leaves debris that must
+   be removed over, more passes weigh those debris (squeaky wheel) until the pool holds
+   a campaign.
 3. *Column generation*: the master LP over the pool gives prices ``y`` on the debris and
    ``sigma_k`` on the launches; each launch is priced (in parallel: a process pool, or
    a Dask cluster); its columns join the pool.  Whatever the prices, the Lagrangian
@@ -50,14 +52,7 @@ from ..planner.size_guard import size_problem
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, RunStatus
 from .greedy import greedy_campaign, repair
 from .master import solve_ip, solve_lp
-from .pricing import (
-    Column,
-    Launch,
-    Pricing,
-    best_of_counts,
-    infeasible_launch,
-    mission_solution,
-)
+from .pricing import Column, Launch, Pricing, best_of_counts, infeasible_launch, mission_solution
 from .pricing_runs import (
     PricingRuns,
     check_options,
@@ -237,8 +232,13 @@ class _Campaign:
         return alone
 
     def greedy(self, alone: list[Pricing]) -> GreedyCampaign:
-        """Step 2: one mission at a time, the cheapest of the debris left."""
-        return greedy_campaign(self, alone)
+        """Step 2: one mission at a time, the cheapest of the debris left; where it leaves
+        required debris over and the pool holds no campaign, more passes that weigh them."""
+        greedy = greedy_campaign(self, alone)
+        self.master_plan()
+        if self.plan is None and greedy.left_over:
+            repair(self, alone, greedy)
+        return greedy
 
     def generate_columns(self) -> tuple[np.ndarray, np.ndarray] | None:
         """Step 3: column generation until the LP is solved, the gap met or time out.
@@ -435,9 +435,6 @@ def solve_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         search.at_once = 1 if inline else at_once
         alone = search.launches_alone()
         greedy = search.greedy(alone)
-        search.master_plan()
-        if search.plan is None and greedy.left_over:
-            repair(search, alone, greedy)
         if search.plan is None and greedy.dv_mps is None and search.out_of_time():
             raise SolverFailure(f"{search.limit_reached()} before any campaign was found")
         estimate = search.upper if np.isfinite(search.upper) else sum(
@@ -486,8 +483,7 @@ def _solution(search: _Campaign, greedy: GreedyCampaign, seconds: float) -> Camp
         total_dv_mps=float(sum(m.total_dv_mps for m in missions)),
         lower_bound_mps=shown_bound(min(search.lower, search.upper)),
         status=status,
-        greedy=GreedyCampaign(greedy.dv_mps, greedy.missions, greedy.why, greedy_paths,
-                              greedy.left_over),
+        greedy=replace(greedy, paths=greedy_paths),
         history=tuple(search.history),
         columns=len(search.pool),
         pricings=search.pricings,
