@@ -25,7 +25,7 @@ REPAIR_BOOST = 0.5
 
 
 def greedy_campaign(search, alone: list[Pricing]) -> GreedyCampaign:
-    """The greedy campaign of ``search`` (a :class:`~sdc_cvx.campaign.search._Campaign`),
+    """The greedy campaign of ``search`` (a :class:`~sdc_cvx.campaign.min_dv.CampaignSearch`),
     each launch's missions priced alone in ``alone`` (one per launch, its cheapest count).
 
     Returns

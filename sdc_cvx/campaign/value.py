@@ -55,6 +55,7 @@ from .master import solve_ip
 from .pricing import Column, Launch, Pricing, mission_solution
 from .result import CampaignSolution, GreedyCampaign
 from .value_bound import cardinality_narrowing, counts_of, lagrangian_bound
+from .value_start import high_value_start
 
 VALUE_TOL = 1e-9
 """Relative tolerance on a campaign's value when it is held while the ΔV is minimised."""
@@ -239,11 +240,13 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         # a bound and good campaigns first, then the missions that can beat them
         say("  the enumeration does not end in its share of the time: a value bound and "
             "campaigns first, then only the missions that can beat them")  # fmt: skip
+        start = high_value_start(catalog, campaign, values, columns, solver=solver,
+                                 deadline=deadline, say=say, stop=stop, run=run, fits=fits)
         bound = lagrangian_bound(
             launches, campaign, values, solver=solver, deadline=_share(BOUND_SHARE, deadline),
             say=say, stop=stop, run=run, best_value=lambda cs: best_value(
                 cs, values, len(launches), len(catalog), solver=solver)[1],
-            columns=columns)  # fmt: skip
+            columns=tuple(columns) + tuple(start))  # fmt: skip
         found, upper = tuple(bound.columns.values()) + tuple(columns), bound.proven
         found = tuple(c for c in found if fits is None or fits(c))  # missions that fly
         priced += (bound.rounds + 1) * len(counts_of(launches, campaign))

@@ -74,8 +74,8 @@ from .master import solve_lp
 TOL_MPS = 0.2
 """Gap each pricing closes [m/s]: a value slack of ``mu * TOL_MPS`` per launch."""
 STALE_ROUNDS = 2
-"""Rounds that find no mission and lower the bound by less than :data:`STALE_REL` before
-the rounds stop."""
+"""Rounds that find no better campaign and lower the bound by less than :data:`STALE_REL`
+before the rounds stop."""
 STALE_REL = 0.01
 VALUE_SLACK = 1e-8
 """Relative slack [-] on the value to reach when debris and counts are ruled out by the
@@ -238,8 +238,8 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
     max_rounds : int
     gap_rel : float
         Stop once the best campaign found is within this of the bound (or after
-        :data:`STALE_ROUNDS` rounds that find no mission and lower the bound by less than
-        :data:`STALE_REL`).
+        :data:`STALE_ROUNDS` rounds that find no better campaign and lower the bound by
+        less than :data:`STALE_REL`).
 
     Returns
     -------
@@ -266,7 +266,7 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
                        time_limit_s=left, sent_at=time.time()))
                  for k, n in counts]  # fmt: skip
         reduced = np.full(len(launches), -np.inf)
-        lowers, before = {}, (len(found.columns), found.upper)
+        lowers, before = {}, (found.proven, value)
         for (k, n), (_, task), pricing in zip(counts, tasks, run(tasks), strict=True):
             prices = task["prices"]
             for column in pricing.columns:
@@ -296,8 +296,9 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
         value = best_value(columns)
         say(f"  value bound, round {round_ + 1}: {len(columns)} missions within budget, best "
             f"campaign {value:g}, no campaign above {found.proven:g}")  # fmt: skip
-        found_none = len(found.columns) == before[0]
-        stale = stale + 1 if found_none and found.upper > (1 - STALE_REL) * before[1] else 0
+        # stale: neither a better bound nor a better campaign (new missions or not)
+        stale = stale + 1 if found.proven > (1 - STALE_REL) * before[0] and \
+            value <= before[1] else 0  # fmt: skip
         if value >= found.proven - gap_rel * max(abs(found.proven), 1e-9) or not columns \
                 or stale >= STALE_ROUNDS:  # fmt: skip
             break

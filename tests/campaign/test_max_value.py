@@ -336,3 +336,35 @@ def test_value_per_dv_is_the_brute_forces_least_priced_campaign(price):
     assert f"price x value = {priced:.2f} m/s" in sol.summary()
     with pytest.raises(MissionError, match="needs price_per_value_mps"):
         Campaign.of([0.0], Mission(n=3), objective="value-per-dv", dv_budget_mps=100)
+
+
+def test_a_first_campaign_takes_the_most_valuable_debris_that_fly_with_one_taken_before():
+    """campaign/value_start.pairable_by_value: by decreasing value, a debris joins only
+    if a mission within budget removes it with one already taken."""
+    from types import SimpleNamespace
+
+    from sdc_cvx.campaign.value_start import pairable_by_value
+
+    values = np.array([5.0, 4.0, 3.0, 2.0, 1.0, 0.0])
+    missions = [SimpleNamespace(debris=d) for d in ((0, 1), (1, 3), (2, 4), (3, 5))]
+    assert pairable_by_value(values, missions, 3) == [0, 1, 3]  # 2 flies with 4 only
+    assert pairable_by_value(values, missions, 9) == [0, 1, 3]  # 5 is worth nothing
+    assert pairable_by_value(values, [SimpleNamespace(debris=(0, 2, 4))], 3) == [0, 2, 4]
+
+
+def test_a_first_campaigns_mission_of_a_sub_catalog_names_the_same_debris_in_the_catalog():
+    """campaign/value_start._in_catalog: rows of the sub-catalog become the catalog's rows
+    of the same ids; the injection orbit (the node past the rows) stays past them."""
+    from sdc_cvx.campaign.pricing import Column
+    from sdc_cvx.campaign.value_start import _in_catalog
+
+    catalog = sso_catalog(8, seed=3)
+    ids = ("S006", "S001", "S004")
+    rows = [catalog.ids.index(k) for k in ids]
+    sub = Column(launch=1, nodes=(3, 2, 0), debris=(0, 2), dv_mps=10.0, lower_mps=9.0,
+                 schedule=None)  # fmt: skip
+    full = _in_catalog(sub, rows, len(ids), len(catalog))
+    assert [catalog.ids[k] for k in full.nodes[1:]] == ["S004", "S006"]
+    assert full.nodes[0] == len(catalog)  # the injection orbit
+    assert sorted(catalog.ids[k] for k in full.debris) == ["S004", "S006"]
+    assert (full.launch, full.dv_mps, full.lower_mps) == (1, 10.0, 9.0)

@@ -1,0 +1,362 @@
+"""The min-ΔV campaign search: column generation with a certified lower bound.
+
+The search (``docs/design.md`` §10, run by :func:`~sdc_cvx.campaign.search.solve_campaign`),
+in named steps (:class:`CampaignSearch`, one method each):
+
+1. *Launches*: each launch's candidates with their RAANs at its launch day; each
+   launch priced alone (no prices): a launch with no flyable mission makes the campaign
+   infeasible, said with its day.
+2. *Greedy* (the baseline): the best first mission, its debris removed, the best second
+   and so on; its missions are columns too.  Where it leaves required debris over, more
+   passes weigh them (squeaky wheel) until the pool holds a campaign.
+3. *Column generation*: the master LP over the pool gives prices ``y`` on the debris and
+   ``sigma_k`` on the launches; each launch is priced (in parallel: a process pool, or
+   a Dask cluster); its columns join the pool.  Whatever the prices, the Lagrangian
+   bound ``L(y) = sum_k B_k(y) - sum_i y_i`` is a lower bound of every campaign, where
+   ``B_k(y)`` is the launch's proven lower bound of ``min over its missions of (ΔV +
+   sum of the prices of their debris)`` (it equals the LP value plus the sum of the
+   launches' most negative reduced costs); the best is kept.  The integer master over
+   the pool is the plan.  The loop ends when no launch has a column of negative reduced
+   cost (the LP is solved), or plan and bound meet.
+4. *Closing*: if a gap is left, every mission whose reduced cost could be below
+   ``plan - L(y)`` is enumerated (a campaign cheaper than the plan can only be made of
+   such missions); the integer master over the pool is then the optimum, and the same
+   master priced at the paths' certified lower bounds is the bound.
+
+References
+----------
+.. [1] G. B. Dantzig and P. Wolfe, "Decomposition principle for linear programs",
+   Operations Research 8(1), 101-111, 1960.
+.. [2] G. Desaulniers, J. Desrosiers and M. M. Solomon (eds.), *Column Generation*,
+   Springer, 2005 (the Lagrangian bound, and reduced-cost enumeration of columns).
+.. [3] M. Cerf, "Multiple space debris collecting mission - Debris selection and
+   trajectory optimization", Journal of Optimization Theory and Applications,
+   156(3), 761-796, 2013.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..errors import MissionInfeasible, SolverFailure
+from ..inputs.campaign import Campaign
+from ..inputs.catalog import Catalog
+from ..milp.types import SolverOptions
+from ..planner.nodes import MissionNodes
+from .greedy import greedy_campaign, repair
+from .master import solve_ip, solve_lp
+from .pricing import Column, Launch, Pricing, best_of_counts, infeasible_launch
+from .result import GreedyCampaign
+
+PATH_TOL_MPS = 0.01
+"""Absolute tolerance of each mission's schedule [m/s] (the single mission's)."""
+MAX_ROUNDS = 200
+"""Column generation rounds at most."""
+EVERY_MISSION_MPS = 1e6
+"""A ΔV no mission reaches [m/s] (a leg costs at most a few km/s): a window this wide
+around a launch's best mission enumerates every mission that flies from it."""
+
+
+@dataclass
+class _Pool:
+    """The columns found so far, one per (launch, path): the best schedule and the
+    highest lower bound known of each."""
+
+    columns: list[Column] = field(default_factory=list)
+    index: dict = field(default_factory=dict)
+
+    def add(self, columns) -> int:
+        """Add ``columns``; the number that were new paths or cheaper schedules."""
+        new = 0
+        for column in columns:
+            k = self.index.get(column.key)
+            if k is None:
+                self.index[column.key] = len(self.columns)
+                self.columns.append(column)
+                new += 1
+                continue
+            old = self.columns[k]
+            new += column.dv_mps < old.dv_mps - 1e-9
+            best = column if column.dv_mps < old.dv_mps else old
+            lower = max(old.lower_mps, column.lower_mps)
+            self.columns[k] = Column(best.launch, best.nodes, best.debris, best.dv_mps,
+                                     min(lower, best.dv_mps), best.schedule)  # fmt: skip
+        return new
+
+    def __len__(self):
+        return len(self.columns)
+
+
+class CampaignSearch:
+    """The search's state: launches, pool, best plan and bound, history; one method per
+    step (see the module docstring)."""
+
+    def __init__(self, catalog: Catalog, campaign: Campaign, solver: SolverOptions,
+                 gap_rel: float, deadline: float, say, run, stop=None) -> None:  # fmt: skip
+        self.catalog, self.campaign, self.solver = catalog, campaign, solver
+        self.gap_rel, self.deadline, self.say, self.run = gap_rel, deadline, say, run
+        self.stop = stop or (lambda: False)
+        self.launches = Launch.all_of(campaign, catalog)
+        # a launch with a range of n is priced once per count (its variants)
+        self.variants = [replace(launch, mission=launch.mission.replace(n=count))
+                         for k, launch in enumerate(self.launches)
+                         for count in range(campaign.fewest(k), launch.mission.n + 1)]  # fmt: skip
+        index = {k: n for n, k in enumerate(catalog.ids)}
+        self.must = tuple(index[k] for k in campaign.required(catalog))
+        self.pool = _Pool()
+        self.upper, self.plan, self.lower = np.inf, None, -np.inf
+        self.history: list[dict] = []
+        self.clock = time.perf_counter()
+        self.pricings = 0
+        self.notes: list[str] = []
+        self.tol = PATH_TOL_MPS
+        self.backends: set[str] = set()
+        self.at_once = 1  # pricings that run at once (solve_campaign sets it)
+
+    # ------------------------------------------------------------------ helpers
+    def remaining(self) -> float | None:
+        if not np.isfinite(self.deadline):
+            return None
+        return self.deadline - time.perf_counter()
+
+    def out_of_time(self) -> bool:
+        """True once the time limit has passed or the caller asked to stop."""
+        left = self.remaining()
+        return self.stop() or (left is not None and left <= 0)
+
+    def limit_reached(self) -> str:
+        """What stopped the search: the caller (Ctrl-C) or the time limit."""
+        return "interrupted" if self.stop() else "time limit reached"
+
+    def allowed(self) -> float:
+        return max(self.gap_rel * abs(self.upper), PATH_TOL_MPS * len(self.launches))
+
+    def within(self) -> bool:
+        return bool(np.isfinite(self.upper) and self.upper - self.lower <= self.allowed() * (
+            1 + 1e-9))  # fmt: skip
+
+    def record(self, step: str, lp_value=None) -> None:
+        lower = shown_bound(self.lower)
+        self.history.append(dict(step=step, seconds=time.perf_counter() - self.clock,
+                                 lower_mps=lower, upper_mps=self.upper,
+                                 lp_mps=lp_value, columns=len(self.pool),
+                                 pricings=self.pricings))  # fmt: skip
+        plan = f"{self.upper:.2f} m/s" if np.isfinite(self.upper) else "none yet"
+        if lower is None or lower <= 0:
+            bound = "no useful bound yet" if lower is not None else "no bound yet"
+        else:
+            bound = f"bound {lower:.2f} m/s, gap {self.upper - lower:.2f} m/s"
+        self.say(f"  {step}: plan {plan}, {bound}, {len(self.pool)} columns, "
+                 f"{self.pricings} pricings")  # fmt: skip
+
+    def price_all(self, tasks, *, share: bool = False) -> list[Pricing]:
+        """Run the pricing ``tasks`` (launch, keyword arguments) where they run, each with
+        the schedules the pool knows of its launch's paths.  A task that waits for a
+        worker has that much less time; with ``share`` (the launches alone: without each
+        launch's plan there is no campaign) never less than its share of the time left."""
+        left = self.remaining()
+        waves = -(-len(tasks) // max(self.at_once, 1))
+        least = left / waves if share and left is not None else 0.0
+        known: dict[int, dict] = {}
+        for column in self.pool.columns:
+            known.setdefault(column.launch, {})[column.nodes] = column.schedule
+        out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left,
+                                      sent_at=time.time(), least_s=least,
+                                      known=known.get(launch.index),
+                                      path_tol_rel=self.gap_rel / 2))
+                        for launch, kwargs in tasks])  # fmt: skip
+        self.pricings += len(out)
+        return out
+
+    def unpriced(self, **options) -> dict:
+        """Options of a pricing without prices (a launch alone, greedy): the mission's own
+        gap, halved (its plan is a column and greedy's value, not a bound)."""
+        return {"tol_mps": PATH_TOL_MPS, "gap_rel": self.gap_rel / 2, **options}
+
+    def variant(self, k: int, count: int) -> Launch:
+        """Launch ``k`` flying ``count`` debris."""
+        return next(v for v in self.variants if v.index == k and v.mission.n == count)
+
+    def per_launch(self, results: list[Pricing]) -> np.ndarray:
+        """Each launch's least lower bound over its variants' ``results`` [m/s]."""
+        bounds = np.full(len(self.launches), np.inf)
+        for result in results:
+            bounds[result.launch] = min(bounds[result.launch], result.lower_mps)
+        return bounds
+
+    def master_plan(self) -> None:
+        """The integer master over the pool: the plan, if it improves."""
+        plan = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
+                        solver=self.solver)  # fmt: skip
+        if plan is not None:
+            self.backends.add(plan.backend)
+            if plan.value < self.upper - 1e-9:
+                self.upper, self.plan = plan.value, [self.pool.columns[c] for c in plan.chosen]
+
+    # ------------------------------------------------------------------ steps
+    def solve(self) -> GreedyCampaign:
+        """Steps 1 to 4 (the module docstring); the plan is ``self.plan``, or None."""
+        alone = self.launches_alone()
+        greedy = self.greedy(alone)
+        if self.plan is None and greedy.dv_mps is None and self.out_of_time():
+            raise SolverFailure(f"{self.limit_reached()} before any campaign was found")
+        estimate = self.upper if np.isfinite(self.upper) else sum(p.upper_mps for p in alone)
+        self.tol = max(PATH_TOL_MPS, self.gap_rel * estimate / (4 * len(self.launches)))
+        self.record("launches alone and greedy")
+        last = None
+        if not self.within():
+            last = self.generate_columns()
+        if not self.within() and not self.out_of_time() and (
+                last is not None or self.plan is None):  # without a plan: no prices needed
+            self.close(*(last or (None, None)))
+        return greedy
+
+    def launches_alone(self) -> list[Pricing]:
+        """Step 1: each launch priced alone; infeasible launches end the campaign."""
+        self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
+                 "each launch alone")  # fmt: skip
+        results = self.price_all([(launch, self.unpriced()) for launch in self.variants],
+                                 share=True)  # fmt: skip
+        self.alone_bounds = self.per_launch(results)
+        alone = [best_of_counts([r for r in results if r.launch == k])
+                 for k in range(len(self.launches))]  # fmt: skip
+        for launch, result in zip(self.launches, alone, strict=True):
+            self.pool.add(result.columns)
+            if result.status == "infeasible":
+                raise MissionInfeasible(infeasible_launch(launch, self.campaign))
+            if result.status == "no_plan":
+                raise SolverFailure(f"{launch.label()}: " + ("interrupted before any plan" if
+                    self.stop() else "the time limit stopped the search before any plan; "
+                    "allow more time"))  # fmt: skip
+            best = result.columns[0] if result.columns else None
+            self.say(f"  {launch.label()} alone: {result.upper_mps:.2f} m/s "
+                     f"({self.path_text(best)}; {result.seconds:.1f} s)")  # fmt: skip
+        return alone
+
+    def greedy(self, alone: list[Pricing]) -> GreedyCampaign:
+        """Step 2: one mission at a time, the cheapest of the debris left; where it leaves
+        required debris over and the pool holds no campaign, more passes that weigh them."""
+        greedy = greedy_campaign(self, alone)
+        self.master_plan()
+        if self.plan is None and greedy.left_over:
+            repair(self, alone, greedy)
+        return greedy
+
+    def generate_columns(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Step 3: column generation until the LP is solved, the gap met or time out.
+
+        Returns the prices of the best bound and the launches' bounds under them (step 4
+        closes from that bound: its window is plan - L(prices)).
+        """
+        last = None
+        for round_ in range(1, MAX_ROUNDS + 1):
+            if self.out_of_time():
+                self.notes.append(f"{self.limit_reached()} during column generation")
+                break
+            lp = solve_lp(self.pool.columns, len(self.launches), len(self.catalog), self.must)
+            tasks = [(launch, dict(prices=lp.prices, tol_mps=self.tol,
+                                   stop_above_mps=lp.sigma[launch.index] - self.tol,
+                                   seeds=self.seeds(launch, lp.prices)))
+                     for launch in self.variants]  # fmt: skip
+            results = self.price_all(tasks)
+            bounds = self.per_launch(results)
+            lagrangian = float(bounds.sum() - lp.prices.sum())
+            if np.isfinite(lagrangian) and lagrangian > self.lower:
+                # the closing step needs the prices of the bound it closes from
+                self.lower, last = lagrangian, (lp.prices, bounds)
+            new = sum(self.pool.add(r.columns) for r in results)
+            self.master_plan()
+            self.record(f"round {round_} (LP {lp.value:.2f} m/s, {new} new columns)", lp.value)
+            solved = all(bounds >= lp.sigma - self.tol - 1e-9)
+            if solved and lp.artificial > 1e-6:
+                # the LP needs an artificial column at its optimum: no campaign is likely,
+                # but a big-M cost proves it only where no price reaches it, so the closing
+                # step proves it (every mission that flies, then the exact master)
+                self.say("  the master LP needs its artificial columns: enumerating every "
+                         "mission that flies to prove whether any campaign does")  # fmt: skip
+                break
+            if self.within() or solved or self.out_of_time() or new == 0:
+                if self.out_of_time() and not self.within():
+                    self.notes.append(f"{self.limit_reached()} during column generation")
+                elif new == 0 and not solved and not self.within():
+                    self.notes.append("column generation stalled: no new column")
+                break
+        else:
+            self.notes.append(f"round limit ({MAX_ROUNDS}) of the column generation reached")
+        return last
+
+    def close(self, prices: np.ndarray | None, bounds: np.ndarray | None) -> None:
+        """Step 4: every mission that could be on a cheaper campaign, then the exact master.
+
+        Without a plan (the LP is fractional and the pool holds no campaign), every
+        mission that flies is enumerated, without prices: the master over them then has
+        a campaign, or proves that none exists.
+        """
+        if self.plan is None:
+            prices, bounds = np.zeros(len(self.catalog)), np.asarray(self.alone_bounds)
+            window = EVERY_MISSION_MPS
+            self.say("  no campaign in the pool: every mission that flies, launch by launch")
+        else:
+            window = self.upper - self.lower
+            self.say(f"  closing the gap: every mission within {window:.2f} m/s of its "
+                     "launch's best reduced cost")  # fmt: skip
+        ceilings = np.asarray(bounds) + window + self.tol
+        tasks = [(launch, dict(prices=prices, tol_mps=self.tol,
+                               ceiling_mps=ceilings[launch.index]))
+                 for launch in self.variants]  # fmt: skip
+        results = self.price_all(tasks)
+        new = sum(self.pool.add(r.columns) for r in results)
+        self.master_plan()
+        if all(r.complete for r in results):
+            # a path the enumeration left out costs at least its launch's ceiling under the
+            # prices: a floor of its own where its schedule's bound is weaker (one cut off
+            # early under large prices bounds it by 0)
+            enumerated = {c.key for r in results for c in r.columns}
+            costs = [c.lower_mps if c.key in enumerated else max(
+                c.lower_mps, ceilings[c.launch] - float(np.sum(prices[list(c.debris)])))
+                for c in self.pool.columns]  # fmt: skip
+            lower = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
+                             solver=self.solver, costs=costs)  # fmt: skip
+            if lower is None:
+                raise MissionInfeasible(
+                    "proven: no campaign removes each debris at most once with these "
+                    f"missions ({self.missions_text()}): every mission that flies from each "
+                    "launch was enumerated, and no choice of one per launch shares no debris"
+                    f"{' and removes every must_remove debris' if self.must else ''}. Relax one "
+                    "of: fewer debris per mission (n), must_remove, a longer mission "
+                    "(tmax_days), more candidates"
+                )
+            self.lower = max(self.lower, min(lower.value, self.upper))
+        else:
+            self.notes.append(f"{self.limit_reached()} while closing the gap")
+        self.record(f"closing ({new} new columns)")
+
+    # ------------------------------------------------------------------ words
+    def seeds(self, launch: Launch, prices) -> list[tuple[int, ...]]:
+        """The pool's cheapest paths of ``launch`` under the prices (incumbents to start)."""
+        mine = [c for c in self.pool.columns
+                if c.launch == launch.index and len(c.debris) == launch.mission.n]  # fmt: skip
+        mine.sort(key=lambda c: c.dv_mps + float(np.sum(prices[list(c.debris)])))
+        return [c.nodes for c in mine[:3]]
+
+    def path_text(self, column: Column | None) -> str:
+        if column is None:
+            return "no plan"
+        ids = MissionNodes.of(self.launches[column.launch].catalog,
+                              self.launches[column.launch].mission).catalog.ids  # fmt: skip
+        return " -> ".join(ids[k] for k in column.nodes)
+
+    def missions_text(self) -> str:
+        counts = self.campaign.counts_text().split(", ")
+        return ", ".join(f"n = {n} from day {d:g}" for d, n in zip(
+            self.campaign.launch_days, counts, strict=True))  # fmt: skip
+
+
+def shown_bound(lower: float) -> float | None:
+    """The bound as reported [m/s]: at least 0 (every mission's ΔV is, so 0 is always a
+    bound, and an early master LP, priced against artificial columns, may prove less);
+    None while none is proven (``-inf``)."""
+    return max(float(lower), 0.0) if np.isfinite(lower) else None

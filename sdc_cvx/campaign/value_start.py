@@ -1,0 +1,136 @@
+"""A first campaign of high value, for the max-value search to narrow from.
+
+The exact enumeration of a programme (:mod:`~sdc_cvx.campaign.value`) is narrowed to the
+missions that can beat the best campaign in hand (:mod:`~sdc_cvx.campaign.value_bound`):
+the better that campaign, the fewer missions remain.  On the McKnight top 50 the rounds of
+column generation find good campaigns slowly, while the best one is plain to see: the
+most valuable debris that can fly together, shared out among the launches.
+
+So: take the debris by decreasing value, each one only if some mission within budget
+already removes it with one taken before (a column found so far), until
+there are as many as the missions can carry (``sum_k n_k``).  The min-ΔV campaign search
+(:meth:`~sdc_cvx.campaign.min_dv.CampaignSearch.solve`, ``must_remove`` all of them, each
+launch its largest count) then shares them out.  Its missions within their budget (and
+tank) are columns of the full catalog: whatever it finds, the value search stays exact,
+the start only makes it narrower.
+
+References
+----------
+.. [1] G. Desaulniers, J. Desrosiers and M. M. Solomon (eds.), *Column Generation*,
+   Springer, 2005 (primal heuristics before reduced-cost fixing).
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from ..errors import SdcError
+from ..inputs.campaign import Campaign
+from ..inputs.catalog import Catalog
+from ..milp.types import SolverOptions
+from .min_dv import CampaignSearch
+from .pricing import Column
+
+START_SHARE = 0.25
+"""Share of the time left the start may take at most."""
+START_GAP = 0.05
+"""Relative gap at which the min-ΔV search of the start stops (any campaign will do)."""
+
+
+def pairable_by_value(values: np.ndarray, columns, count: int) -> list[int]:
+    """Catalog rows by decreasing value, each paired within budget with one taken before.
+
+    Parameters
+    ----------
+    values : ndarray
+        Value of each debris (catalog order).
+    columns : iterable of Column
+        Missions within budget: two debris fly together if one removes both.
+    count : int
+        How many to take at most.
+
+    Returns
+    -------
+    list of int
+    """
+    pairs = {frozenset(pair) for c in columns for pair in itertools.combinations(c.debris, 2)}
+    chosen: list[int] = []
+    for i in np.argsort(-values, kind="stable"):
+        if len(chosen) == count or values[i] <= 0:
+            break
+        if not chosen or any(frozenset((int(i), j)) in pairs for j in chosen):
+            chosen.append(int(i))
+    return chosen
+
+
+def high_value_start(catalog: Catalog, campaign: Campaign, values: np.ndarray, columns, *,
+                     solver: SolverOptions, deadline: float, say, stop, run,
+                     fits=None) -> list[Column]:  # fmt: skip
+    """Missions of a campaign of high value (columns of ``catalog``; empty if none found).
+
+    Parameters
+    ----------
+    catalog : Catalog
+    campaign : Campaign
+        A max-value campaign (budgets ``dv_budget_mps``).
+    values : ndarray
+    columns : iterable of Column
+        Missions within budget found so far (their pairs guide the choice).
+    solver : SolverOptions
+    deadline : float
+        ``time.perf_counter()`` at which the whole search ends.
+    say, stop, run
+        As :func:`~sdc_cvx.campaign.value.solve_max_value` has them.
+    fits : callable, optional
+        Whether a mission fits its vehicle's tank.
+
+    Returns
+    -------
+    list of Column
+    """
+    counts = [mission.n for mission in campaign.missions]
+    chosen = pairable_by_value(values, columns, sum(counts))
+    if len(chosen) < sum(counts) or any(m.must_include or m.first for m in campaign.missions):
+        say(f"  no first campaign: {len(chosen)} debris pair within budget, "
+            f"{sum(counts)} wanted" if len(chosen) < sum(counts) else
+            "  no first campaign: a mission names debris it must remove or start from")
+        return []
+    ids = tuple(catalog.ids[i] for i in chosen)
+    missions = tuple(m.replace(exclude=tuple(k for k in m.exclude if k in ids))
+                     for m in campaign.missions)  # fmt: skip
+    shared = replace(campaign, missions=missions, objective="min-dv", must_remove=ids,
+                     remove_all=False, dv_budget_mps=(), n_min=(), values=())  # fmt: skip
+    left = deadline - time.perf_counter()
+    limit = time.perf_counter() + START_SHARE * left if np.isfinite(left) else np.inf
+    say(f"  a first campaign: the {len(ids)} most valuable debris that pair within budget, "
+        "shared out at least ΔV")  # fmt: skip
+    try:
+        search = CampaignSearch(catalog.subset(ids), shared, solver, START_GAP, limit,
+                           lambda line: None, run, stop)  # fmt: skip
+        search.solve()
+    except SdcError as err:  # no such campaign: the value search goes on without it
+        say(f"  no first campaign ({err})")
+        return []
+    rows = [catalog.ids.index(k) for k in ids]
+    found = []
+    for column in search.plan or ():
+        full = _in_catalog(column, rows, len(ids), len(catalog))
+        if full.dv_mps <= campaign.dv_budget_mps[full.launch] and (fits is None or fits(full)):
+            found.append(full)
+    say(f"  first campaign: {len(found)} of {len(counts)} missions within budget, worth "
+        f"{sum(values[list(c.debris)].sum() for c in found):g}")  # fmt: skip
+    return found
+
+
+def _in_catalog(column: Column, rows: list[int], sub: int, full: int) -> Column:
+    """``column`` of a sub-catalog (its row r is ``rows[r]`` of the catalog; a node past
+    its rows, the injection orbit, is as far past the catalog's)."""
+    def row(node: int) -> int:
+        return rows[node] if node < sub else full + node - sub
+
+    return replace(column, nodes=tuple(row(k) for k in column.nodes),
+                   debris=tuple(sorted(rows[k] for k in column.debris)))
