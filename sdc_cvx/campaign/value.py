@@ -44,7 +44,7 @@ from functools import partial
 
 import numpy as np
 
-from ..errors import MissionError, MissionInfeasible, SolverFailure
+from ..errors import MissionError, MissionInfeasible, SdcError, SolverFailure
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..inputs.vehicle import propellant_budget
@@ -52,10 +52,11 @@ from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from ..solution import OPTIMAL_GAP_MPS, RunStatus
 from .master import solve_ip
+from .plane_bound import campaign_plane_bound
 from .pricing import Column, Launch, Pricing, mission_solution
 from .result import CampaignSolution, GreedyCampaign
 from .value_bound import cardinality_narrowing, counts_of, lagrangian_bound
-from .value_start import high_value_start
+from .value_start import high_value_start, in_catalog, shared_out
 
 VALUE_TOL = 1e-9
 """Relative tolerance on a campaign's value when it is held while the ΔV is minimised."""
@@ -203,8 +204,13 @@ def best_value(columns: list, values: np.ndarray, launches: int, debris: int, *,
 
 
 def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
-                    deadline: float, say, stop, run):  # fmt: skip
+                    deadline: float, say, stop, run, shortcut: bool = True):  # fmt: skip
     """The most valuable campaign (see the module docstring).
+
+    ``shortcut``: where the plane-change bound forces the debris of the most valuable
+    campaigns (:mod:`~sdc_cvx.campaign.plane_bound`), prove it by the min-ΔV search over
+    them alone (:func:`_forced`), without the enumeration (whose missions a Pareto front
+    needs: ``--pareto`` runs without it).
 
     Returns
     -------
@@ -232,7 +238,13 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
             "each mission's propellant")  # fmt: skip
     enumerate_all = partial(enumerate_missions, launches, campaign, solver=solver, say=say,
                             stop=stop, run=run, fits=fits)  # fmt: skip
-    upper, priced = np.inf, len(counts_of(launches, campaign))
+    plane = campaign_plane_bound(catalog, campaign, values)
+    if price is None and shortcut and plane.forced is not None:
+        forced = _forced(catalog, campaign, launches, values, plane, solver=solver, gap=gap,
+                         deadline=deadline, say=say, stop=stop, run=run, fits=fits)  # fmt: skip
+        if forced is not None:
+            return forced
+    upper, priced = plane.value, len(counts_of(launches, campaign))
     # every mission within budget, if that ends in a share of the time (small programmes)
     columns, undecided, complete = enumerate_all(
         deadline=deadline if price is not None else _share(PLAIN_SHARE, deadline))
@@ -247,7 +259,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
             say=say, stop=stop, run=run, best_value=lambda cs: best_value(
                 cs, values, len(launches), len(catalog), solver=solver)[1],
             columns=tuple(columns) + tuple(start))  # fmt: skip
-        found, upper = tuple(bound.columns.values()) + tuple(columns), bound.proven
+        found, upper = tuple(bound.columns.values()) + tuple(columns), min(bound.proven, upper)
         found = tuple(c for c in found if fits is None or fits(c))  # missions that fly
         priced += (bound.rounds + 1) * len(counts_of(launches, campaign))
         best = best_value(list(found), values, len(launches), len(catalog), solver=solver)[1]
@@ -324,6 +336,39 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                 pool=(columns, undecided, values))  # fmt: skip
 
 
+def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline, say, stop,
+            run, fits):  # fmt: skip
+    """The most valuable campaign where ``plane`` forces its debris: the min-ΔV campaign
+    that removes exactly them, if it is certified and its missions fit their budgets (and
+    tanks); else None (the enumeration goes on)."""
+    counts = [launch.mission.n for launch in launches]
+    if len(plane.forced) != sum(counts) or min(values[list(plane.forced)]) <= 0:
+        return None  # room for other debris of no value: not every campaign is these
+    ids = tuple(catalog.ids[i] for i in plane.forced)
+    say(f"  the plane changes no budget pays split the debris in {plane.groups} groups: no "
+        f"campaign is worth more than {plane.value:g}, and only these {len(ids)} debris "
+        "reach it; their least ΔV campaign:")  # fmt: skip
+    try:
+        search = shared_out(catalog, campaign, ids, solver, gap, deadline, run, stop)
+    except SdcError as err:
+        say(f"  none ({err}): every mission within budget, then")
+        return None
+    plan = in_catalog(search, catalog, ids)
+    over = [c for c in plan if c.dv_mps > campaign.dv_budget_mps[c.launch] * (1 + 1e-12)
+            or (fits is not None and not fits(c))]  # fmt: skip
+    dv, dv_bound = float(sum(c.dv_mps for c in plan)), max(float(search.lower), 0.0)
+    allowed = max(gap * dv, OPTIMAL_GAP_MPS * len(launches))
+    if over or dv - dv_bound > allowed * (1 + 1e-9):
+        say(f"  {'a mission over its budget' if over else 'its ΔV not proven'}: every "
+            "mission within budget, then")  # fmt: skip
+        return None
+    return dict(plan=plan, launches=launches, value=plane.value, value_bound=plane.value,
+                dv_mps=dv, pricings=search.pricings, dv_bound_mps=dv_bound,
+                status=RunStatus.OPTIMAL, columns=len(search.pool),
+                notes=(f"the value bound is the plane changes' ({plane.groups} groups of debris "
+                       "that may share a mission)",), pool=(plan, [], values))  # fmt: skip
+
+
 def _priced(columns: list, values: np.ndarray, price: float, launches: int, debris: int,
             solver: SolverOptions, costs=None):  # fmt: skip
     """The campaign of ``columns`` least in ``Σ cost − price · Σ value`` (``costs``:
@@ -381,7 +426,7 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         raise MissionError("pareto: value against ΔV needs objective = 'max-value' (with "
                            "each mission's dv_budget_mps)")  # fmt: skip
     found = solve_max_value(catalog, campaign, solver=solver, gap=gap, deadline=deadline,
-                            say=say, stop=stop, run=run)  # fmt: skip
+                            say=say, stop=stop, run=run, shortcut=not pareto)  # fmt: skip
     front = ()
     if pareto and found["plan"] is not None:
         columns, undecided, values = found["pool"]

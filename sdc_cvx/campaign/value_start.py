@@ -28,7 +28,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..errors import SdcError
+from ..errors import MissionError, SdcError, SolverFailure
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
@@ -94,36 +94,55 @@ def high_value_start(catalog: Catalog, campaign: Campaign, values: np.ndarray, c
     """
     counts = [mission.n for mission in campaign.missions]
     chosen = pairable_by_value(values, columns, sum(counts))
-    if len(chosen) < sum(counts) or any(m.must_include or m.first for m in campaign.missions):
-        say(f"  no first campaign: {len(chosen)} debris pair within budget, "
-            f"{sum(counts)} wanted" if len(chosen) < sum(counts) else
-            "  no first campaign: a mission names debris it must remove or start from")
+    if len(chosen) < sum(counts):
+        say(f"  no first campaign: {len(chosen)} debris pair within budget, {sum(counts)} "
+            "wanted")  # fmt: skip
         return []
     ids = tuple(catalog.ids[i] for i in chosen)
-    missions = tuple(m.replace(exclude=tuple(k for k in m.exclude if k in ids))
-                     for m in campaign.missions)  # fmt: skip
-    shared = replace(campaign, missions=missions, objective="min-dv", must_remove=ids,
-                     remove_all=False, dv_budget_mps=(), n_min=(), values=())  # fmt: skip
     left = deadline - time.perf_counter()
     limit = time.perf_counter() + START_SHARE * left if np.isfinite(left) else np.inf
     say(f"  a first campaign: the {len(ids)} most valuable debris that pair within budget, "
         "shared out at least ΔV")  # fmt: skip
     try:
-        search = CampaignSearch(catalog.subset(ids), shared, solver, START_GAP, limit,
-                           lambda line: None, run, stop)  # fmt: skip
-        search.solve()
+        search = shared_out(catalog, campaign, ids, solver, START_GAP, limit, run, stop)
     except SdcError as err:  # no such campaign: the value search goes on without it
         say(f"  no first campaign ({err})")
         return []
-    rows = [catalog.ids.index(k) for k in ids]
-    found = []
-    for column in search.plan or ():
-        full = _in_catalog(column, rows, len(ids), len(catalog))
-        if full.dv_mps <= campaign.dv_budget_mps[full.launch] and (fits is None or fits(full)):
-            found.append(full)
+    found = [c for c in in_catalog(search, catalog, ids)
+             if c.dv_mps <= campaign.dv_budget_mps[c.launch] and (fits is None or fits(c))]
     say(f"  first campaign: {len(found)} of {len(counts)} missions within budget, worth "
         f"{sum(values[list(c.debris)].sum() for c in found):g}")  # fmt: skip
     return found
+
+
+def shared_out(catalog: Catalog, campaign: Campaign, ids, solver: SolverOptions, gap: float,
+               deadline: float, run, stop) -> CampaignSearch:  # fmt: skip
+    """The min-ΔV search over the debris ``ids`` only, every one removed, each mission
+    ``campaign``'s largest count (solved: its ``plan`` and bounds).
+
+    Raises
+    ------
+    SdcError
+        No such campaign (infeasible, or none before ``deadline``).
+    """
+    if any(m.must_include or m.first for m in campaign.missions):
+        raise MissionError("a mission names debris it must remove or start from")
+    missions = tuple(m.replace(exclude=tuple(k for k in m.exclude if k in ids))
+                     for m in campaign.missions)  # fmt: skip
+    shared = replace(campaign, missions=missions, objective="min-dv", must_remove=tuple(ids),
+                     remove_all=False, dv_budget_mps=(), n_min=(), values=())  # fmt: skip
+    search = CampaignSearch(catalog.subset(ids), shared, solver, gap, deadline,
+                            lambda line: None, run, stop)  # fmt: skip
+    search.solve()
+    if search.plan is None:
+        raise SolverFailure("no campaign within the limit")
+    return search
+
+
+def in_catalog(search: CampaignSearch, catalog: Catalog, ids) -> list[Column]:
+    """The plan of :func:`shared_out` as columns of ``catalog``."""
+    rows = [catalog.ids.index(k) for k in ids]
+    return [_in_catalog(c, rows, len(ids), len(catalog)) for c in search.plan]
 
 
 def _in_catalog(column: Column, rows: list[int], sub: int, full: int) -> Column:
