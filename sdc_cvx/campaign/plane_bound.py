@@ -2,17 +2,20 @@
 
 Between two debris of inclinations I_i and I_j the vehicle must turn its orbital plane
 by at least ``|I_i - I_j|`` (the angle between two planes is at least the difference of
-their inclinations).  Only burns turn it (J2 moves the node, not the inclination), and a
-burn that turns the velocity by theta at speed v or more costs at least ``2 v sin(theta /
-2)`` (``|v2 - v1|`` with both at least v); the turns of several burns add up to at least
-the whole turn and ``sin`` is subadditive on [0, pi], so every mission removing both
-costs at least::
+their inclinations).  Only burns turn it (J2 moves the node, not the inclination), and in
+the model every burn is at an apsis (of a circular orbit or a Hohmann ellipse), where the
+plane turns by the angle theta between the velocities before and after; a burn from
+speed v1 to v2 costs ``sqrt((v1 - v2)^2 + 4 v1 v2 sin^2(theta / 2)) >= 2 v_min
+sin(theta / 2)``.  The turns of several burns add up to at least the whole turn and
+``sin`` is subadditive on [0, pi], so every mission removing both costs at least::
 
-    2 V_min sin(|I_i - I_j| / 2),   V_min = sqrt(mu / a_max),
+    2 V_min sin(|I_i - I_j| / 2),
+    V_min = sqrt(mu / a_high) sqrt(2 a_low / (a_low + a_high)),
 
-where ``a_max`` is the largest radius the vehicle flies (the top of the drift band, or a
-debris' semi-major axis above it).  The low-thrust plane change costs ``(pi / 2) V dI``,
-more.  Where that exceeds every mission's ΔV budget, no mission removes both: the debris
+the apoapsis speed of the widest transfer ellipse, the slowest the vehicle flies
+(``a_low``, ``a_high``: the lowest and highest radii it may fly, the drift band's or a
+debris').  The low-thrust plane change costs ``(pi / 2) V dI`` at a circular speed V, more.
+Where that exceeds every mission's ΔV budget, no mission removes both: the debris
 split into *groups* (connected components of "may share a mission") and every mission
 draws from one group.  A campaign is then worth at most the best way of giving each
 mission a group, each group's missions taking its most valuable debris (a small search
@@ -53,22 +56,24 @@ class PlaneBound(NamedTuple):
     groups: int  # groups of debris that may share a mission
 
 
-def least_plane_change_dv(inc_a, inc_b, a_max_m: float):
+def least_plane_change_dv(inc_a, inc_b, a_low_m: float, a_high_m: float):
     """Least ΔV [m/s] of any mission removing debris of inclinations ``inc_a``, ``inc_b``
-    [rad] when the vehicle flies no higher than ``a_max_m`` [m]."""
-    v_min = np.sqrt(MU_EARTH / a_max_m)
+    [rad] when the vehicle flies between radii ``a_low_m`` and ``a_high_m`` [m]."""
+    v_min = np.sqrt(MU_EARTH / a_high_m) * np.sqrt(2.0 * a_low_m / (a_low_m + a_high_m))
     return 2.0 * v_min * np.sin(np.abs(np.asarray(inc_a) - np.asarray(inc_b)) / 2.0)
 
 
 def plane_value_bound(inc_rad, a_m, values, counts, budget_mps: float,
-                      band_top_km: float) -> PlaneBound:  # fmt: skip
+                      band_km: tuple[float, float]) -> PlaneBound:  # fmt: skip
     """:class:`PlaneBound` of debris ``inc_rad``, ``a_m`` worth ``values`` for missions of
     at most ``counts`` debris within ``budget_mps`` (the largest budget) [m/s], the drift
-    band's top at ``band_top_km`` [km] of altitude."""
+    band ``band_km`` [km of altitude]."""
     values = np.maximum(np.asarray(values, dtype=float), 0.0)
-    a_max = max(R_EARTH + 1e3 * band_top_km, float(np.max(a_m)))
+    a_low = min(R_EARTH + 1e3 * band_km[0], float(np.min(a_m)))
+    a_high = max(R_EARTH + 1e3 * band_km[1], float(np.max(a_m)))
     inc = np.asarray(inc_rad, dtype=float)
-    may = least_plane_change_dv(inc[:, None], inc[None, :], a_max) <= budget_mps * (1 + 1e-9)
+    least = least_plane_change_dv(inc[:, None], inc[None, :], a_low, a_high)
+    may = least <= budget_mps * (1 + 1e-9)
     groups, label = connected_components(csr_matrix(may), directed=False)
     members = [np.flatnonzero(label == g) for g in range(groups)]
     members = [m[np.argsort(-values[m], kind="stable")] for m in members]
@@ -97,6 +102,7 @@ def plane_value_bound(inc_rad, a_m, values, counts, budget_mps: float,
 def campaign_plane_bound(catalog, campaign, values) -> PlaneBound:
     """:func:`plane_value_bound` of a max-value campaign over ``catalog``."""
     counts = [mission.n for mission in campaign.missions]
-    top = max(mission.drift_altitude_km[1] for mission in campaign.missions)
+    band = (min(m.drift_altitude_km[0] for m in campaign.missions),
+            max(m.drift_altitude_km[1] for m in campaign.missions))
     return plane_value_bound(catalog.inc_rad, catalog.a_m, values, counts,
-                             float(max(campaign.dv_budget_mps)), top)  # fmt: skip
+                             float(max(campaign.dv_budget_mps)), band)  # fmt: skip

@@ -20,14 +20,19 @@ from tests.campaign.bruteforce import value_optimum
 MU = 3.986e14  # m^3/s^2, as the package's (the paper's Table 1)
 
 
-def test_the_least_plane_change_is_the_difference_of_the_two_velocities():
-    a = 7.5e6
-    speed = np.sqrt(MU / a)
+def test_the_least_plane_change_is_the_turn_at_the_slowest_apoapsis():
+    """At the apoapsis of the Hohmann ellipse from 6778 to 7578 km (the slowest the
+    vehicle flies), turning the velocity by dI about the radius costs |v2 - v1|; any
+    other burn (faster, or changing the speed too) costs more."""
+    low, high = 6.778e6, 7.578e6
+    v_apo = np.sqrt(MU * 2 * low / (high * (low + high)))  # vis-viva at r = high
     for d_inc in np.radians([0.5, 7.9, 28.5]):
-        # at the node, the velocity turns about the radius by dI
-        v1 = speed * np.array([0.0, 1.0, 0.0])
-        v2 = speed * np.array([0.0, np.cos(d_inc), np.sin(d_inc)])
-        assert least_plane_change_dv(0.0, d_inc, a) == pytest.approx(np.linalg.norm(v2 - v1))
+        v1 = v_apo * np.array([0.0, 1.0, 0.0])
+        v2 = v_apo * np.array([0.0, np.cos(d_inc), np.sin(d_inc)])
+        least = least_plane_change_dv(0.0, d_inc, low, high)
+        assert least == pytest.approx(np.linalg.norm(v2 - v1))
+        circular = np.sqrt(MU / high) * np.array([0.0, np.cos(d_inc), np.sin(d_inc)])
+        assert least < np.linalg.norm(circular - v1)  # and raising the speed costs more
 
 
 def test_debris_whose_plane_change_no_budget_pays_never_share_a_mission():
@@ -35,17 +40,17 @@ def test_debris_whose_plane_change_no_budget_pays_never_share_a_mission():
     top), budgets of 1 km/s, two missions of two: the lone stage flies alone, so the
     campaign is worth at most (10 + 8) + 9, not the four most valuable, 28."""
     inc = np.radians([71.0, 71.1, 71.2, 99.5])
-    a = np.full(4, 7.2e6)
-    bound = plane_value_bound(inc, a, np.array([10.0, 8.0, 1.0, 9.0]), [2, 2], 1000.0, 1200.0)
+    a, band, values = np.full(4, 7.2e6), (400.0, 1200.0), np.array([10.0, 8.0, 1.0, 9.0])
+    bound = plane_value_bound(inc, a, values, [2, 2], 1000.0, band)
     assert bound.groups == 2
     assert bound.value == pytest.approx(27.0) and bound.forced == (0, 1, 3)
     # budgets that pay the turn: one group, the four most valuable
-    wide = plane_value_bound(inc, a, np.array([10.0, 8.0, 1.0, 9.0]), [2, 2], 4000.0, 1200.0)
+    wide = plane_value_bound(inc, a, values, [2, 2], 4000.0, band)
     assert wide.groups == 1 and wide.value == pytest.approx(28.0)
     # a tie at the edge of a group's best: two sets reach the bound, none is forced
     tied = np.array([10.0, 8.0, 8.0, 9.0])
-    assert plane_value_bound(inc, a, tied, [2, 2], 1000.0, 1200.0).forced is None
-    assert plane_value_bound(inc, a, tied, [3, 2], 1000.0, 1200.0).forced == (0, 1, 2, 3)
+    assert plane_value_bound(inc, a, tied, [2, 2], 1000.0, band).forced is None
+    assert plane_value_bound(inc, a, tied, [3, 2], 1000.0, band).forced == (0, 1, 2, 3)
 
 
 def test_a_campaign_whose_debris_the_bound_forces_is_the_brute_forces():
