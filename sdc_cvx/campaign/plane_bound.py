@@ -54,6 +54,8 @@ class PlaneBound(NamedTuple):
     value: float  # [value units]; inf when not computed
     forced: tuple[int, ...] | None  # catalog rows every campaign of that value removes
     groups: int  # groups of debris that may share a mission
+    v_min_mps: float = np.nan  # the slowest speed the vehicle flies [m/s]
+    max_turn_rad: float = np.nan  # the widest plane change a budget pays [rad]
 
 
 def least_plane_change_dv(inc_a, inc_b, a_low_m: float, a_high_m: float):
@@ -75,6 +77,8 @@ def plane_value_bound(inc_rad, a_m, values, counts, budget_mps: float,
     least = least_plane_change_dv(inc[:, None], inc[None, :], a_low, a_high)
     may = least <= budget_mps * (1 + 1e-9)
     groups, label = connected_components(csr_matrix(may), directed=False)
+    v_min = float(least_plane_change_dv(0.0, np.pi, a_low, a_high)) / 2.0
+    turn = 2.0 * np.arcsin(min(budget_mps / (2.0 * v_min), 1.0))
     members = [np.flatnonzero(label == g) for g in range(groups)]
     members = [m[np.argsort(-values[m], kind="stable")] for m in members]
     prefix = [np.concatenate([[0.0], np.cumsum(values[m])]) for m in members]
@@ -86,7 +90,7 @@ def plane_value_bound(inc_rad, a_m, values, counts, budget_mps: float,
     for n in counts:  # each mission takes one group's slots
         states = {s[:g] + (s[g] + n,) + s[g + 1:] for s in states for g in range(groups)}
         if len(states) > MAX_STATES:
-            return PlaneBound(np.inf, None, groups)
+            return PlaneBound(np.inf, None, groups, v_min, turn)
     ranked = sorted(((worth(s), s) for s in states), reverse=True)
     best, slots = ranked[0]
     tie = best * TIE_REL + 1e-12
@@ -96,7 +100,7 @@ def plane_value_bound(inc_rad, a_m, values, counts, budget_mps: float,
             unique = False
     forced = tuple(sorted(int(i) for m, s in zip(members, slots, strict=True)
                           for i in m[:s])) if unique else None  # fmt: skip
-    return PlaneBound(float(best), forced, groups)
+    return PlaneBound(float(best), forced, groups, v_min, turn)
 
 
 def campaign_plane_bound(catalog, campaign, values) -> PlaneBound:

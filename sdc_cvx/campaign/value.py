@@ -345,9 +345,11 @@ def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline
     if len(plane.forced) != sum(counts) or min(values[list(plane.forced)]) <= 0:
         return None  # room for other debris of no value: not every campaign is these
     ids = tuple(catalog.ids[i] for i in plane.forced)
-    say(f"  the plane changes no budget pays split the debris in {plane.groups} groups: no "
-        f"campaign is worth more than {plane.value:g}, and only these {len(ids)} debris "
-        "reach it; their least ΔV campaign:")  # fmt: skip
+    say(f"  no mission removes debris {np.degrees(plane.max_turn_rad):.2f} deg apart (a plane "
+        f"change of 2 v sin(dI/2) at {plane.v_min_mps / 1e3:.3f} km/s, the slowest speed "
+        f"flown, would exceed every budget): {plane.groups} groups of debris, no campaign "
+        f"worth more than {plane.value:g}, and only these {len(ids)} debris reach it; "
+        "their least ΔV campaign:")  # fmt: skip
     try:
         search = shared_out(catalog, campaign, ids, solver, gap, deadline, run, stop)
     except SdcError as err:
