@@ -6,8 +6,10 @@ their inclinations).  Only burns turn it (J2 moves the node, not the inclination
 the model every burn is at an apsis (of a circular orbit or a Hohmann ellipse), where the
 plane turns by the angle theta between the velocities before and after; a burn from
 speed v1 to v2 costs ``sqrt((v1 - v2)^2 + 4 v1 v2 sin^2(theta / 2)) >= 2 v_min
-sin(theta / 2)``.  The turns of several burns add up to at least the whole turn and
-``sin`` is subadditive on [0, pi], so every mission removing both costs at least::
+sin(theta / 2)``.  The turns of several burns (each at most pi) add up to at least the
+whole turn, and ``g(x) = sin(min(x, pi) / 2)`` is concave, nondecreasing and 0 at 0, so
+``sum g(theta_k) >= g(sum theta_k) >= g(|I_i - I_j|)``: every mission removing both costs
+at least::
 
     2 V_min sin(|I_i - I_j| / 2),
     V_min = sqrt(mu / a_high) sqrt(2 a_low / (a_low + a_high)),
