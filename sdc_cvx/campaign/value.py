@@ -66,6 +66,9 @@ before the Lagrangian rounds (:mod:`~sdc_cvx.campaign.value_bound`) take over.""
 BOUND_SHARE = 0.6
 """Share of the time left then that the Lagrangian rounds may take before the narrowed
 enumeration."""
+FORCED_SHARE = 0.5
+"""Share of the time left the min-ΔV campaign of the debris the plane-change bound forces
+may take (:func:`_forced`)."""
 PATH_GAP_REL = 1e-4
 """Relative tolerance of each enumerated path's schedule (undecided paths lie within it
 of their budget)."""
@@ -350,8 +353,10 @@ def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline
         f"flown, would exceed every budget): {plane.groups} groups of debris, no campaign "
         f"worth more than {plane.value:g}, and only these {len(ids)} debris reach it; "
         "their least ΔV campaign:")  # fmt: skip
+    left = deadline - time.perf_counter()  # half the time at most: the enumeration may follow
+    limit = time.perf_counter() + FORCED_SHARE * left if np.isfinite(left) else np.inf
     try:
-        search = shared_out(catalog, campaign, ids, solver, gap, deadline, run, stop)
+        search = shared_out(catalog, campaign, ids, solver, gap, limit, run, stop)
     except SdcError as err:
         say(f"  none ({err}): every mission within budget, then")
         return None
