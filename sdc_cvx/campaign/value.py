@@ -21,6 +21,11 @@ that value, the least ΔV.  The same master over the columns *and* the undecided
 at their bounds, gives the most value any campaign could have and the least ΔV it could
 cost: the answer is ``optimal`` when the two agree within the gap.
 
+First, where plane changes no budget pays split the debris into groups that never share a
+mission (:mod:`~sdc_cvx.campaign.plane_bound`), the most any campaign is worth may force
+its debris: the min-ΔV campaign that removes exactly them, certified, is then the answer
+if its missions fit their budgets (no enumeration).
+
 The enumeration grows with the number of paths under the budget: it is exact for the
 small and medium catalogs a programme is screened on.  When it does not end within
 :data:`PLAIN_SHARE` of the time limit (the McKnight top 50 under 1 km/s a mission), rounds
