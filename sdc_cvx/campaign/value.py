@@ -71,6 +71,9 @@ before the Lagrangian rounds (:mod:`~sdc_cvx.campaign.value_bound`) take over.""
 BOUND_SHARE = 0.6
 """Share of the time left then that the Lagrangian rounds may take before the narrowed
 enumeration."""
+START_SHARE = 0.25
+"""Share of the time left then that the first campaign of high value may take
+(:func:`~sdc_cvx.campaign.value_start.high_value_start`)."""
 FORCED_SHARE = 0.5
 """Share of the time left the min-ΔV campaign of the debris the plane-change bound forces
 may take (:func:`_forced`)."""
@@ -261,7 +264,8 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         say("  the enumeration does not end in its share of the time: a value bound and "
             "campaigns first, then only the missions that can beat them")  # fmt: skip
         start = high_value_start(catalog, campaign, values, columns, solver=solver,
-                                 deadline=deadline, say=say, stop=stop, run=run, fits=fits)
+                                 deadline=_share(START_SHARE, deadline), say=say, stop=stop,
+                                 run=run, fits=fits)  # fmt: skip
         bound = lagrangian_bound(
             launches, campaign, values, solver=solver, deadline=_share(BOUND_SHARE, deadline),
             say=say, stop=stop, run=run, best_value=lambda cs: best_value(
@@ -358,10 +362,9 @@ def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline
         f"flown, would exceed every budget): {plane.groups} groups of debris, no campaign "
         f"worth more than {plane.value:g}, and only these {len(ids)} debris reach it; "
         "their least ΔV campaign:")  # fmt: skip
-    left = deadline - time.perf_counter()  # half the time at most: the enumeration may follow
-    limit = time.perf_counter() + FORCED_SHARE * left if np.isfinite(left) else np.inf
-    try:
-        search = shared_out(catalog, campaign, ids, solver, gap, limit, run, stop)
+    try:  # a share of the time at most: the enumeration may follow
+        search = shared_out(catalog, campaign, ids, solver, gap, _share(FORCED_SHARE, deadline),
+                            run, stop)  # fmt: skip
     except SdcError as err:
         say(f"  none ({err}): every mission within budget, then")
         return None

@@ -23,7 +23,6 @@ References
 from __future__ import annotations
 
 import itertools
-import time
 from dataclasses import replace
 
 import numpy as np
@@ -35,8 +34,6 @@ from ..milp.types import SolverOptions
 from .min_dv import CampaignSearch
 from .pricing import Column
 
-START_SHARE = 0.25
-"""Share of the time left the start may take at most."""
 START_GAP = 0.05
 """Relative gap at which the min-ΔV search of the start stops (any campaign will do)."""
 
@@ -82,7 +79,7 @@ def high_value_start(catalog: Catalog, campaign: Campaign, values: np.ndarray, c
         Missions within budget found so far (their pairs guide the choice).
     solver : SolverOptions
     deadline : float
-        ``time.perf_counter()`` at which the whole search ends.
+        ``time.perf_counter()`` at which the start must end.
     say, stop, run
         As :func:`~sdc_cvx.campaign.value.solve_max_value` has them.
     fits : callable, optional
@@ -99,12 +96,10 @@ def high_value_start(catalog: Catalog, campaign: Campaign, values: np.ndarray, c
             "wanted")  # fmt: skip
         return []
     ids = tuple(catalog.ids[i] for i in chosen)
-    left = deadline - time.perf_counter()
-    limit = time.perf_counter() + START_SHARE * left if np.isfinite(left) else np.inf
     say(f"  a first campaign: the {len(ids)} most valuable debris that pair within budget, "
         "shared out at least ΔV")  # fmt: skip
     try:
-        search = shared_out(catalog, campaign, ids, solver, START_GAP, limit, run, stop)
+        search = shared_out(catalog, campaign, ids, solver, START_GAP, deadline, run, stop)
     except SdcError as err:  # no such campaign: the value search goes on without it
         say(f"  no first campaign ({err})")
         return []
