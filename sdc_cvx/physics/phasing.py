@@ -62,6 +62,10 @@ LATE_COST_MPS_PER_DAY = 2.0
 """What a day of lateness is worth [m/s] when no phasing arrives in time (a zero-length leg
 of the plan, flown after corrections): waiting a synodic period is then cheaper than a
 drift fast enough to keep the date, and the legs after it may make the days up."""
+ARRIVAL_SLACK_S = 86400.0
+"""A bracket of radii whose two ends both arrive later than this after the latest arrival
+[s] holds no leg in time (the arrival moves by less than an orbit across a bracket where
+the phase error crosses zero): it is refined only if no bracket is in time."""
 RADIUS_POINTS = 12001
 """Points of each bracket before the zeros are refined by bisection (2 m apart in the
 first: the phase error turns up to about 8 rad per km on a half-year drift)."""
@@ -246,16 +250,37 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     }
 
 
-def grid_zeros(error_at, grid, rows):
-    """Where ``error_at(row, x)`` vanishes along ``grid`` for each of ``rows``: every sign
-    change between neighbours (not a jump at +/- pi) refined by :data:`BISECTIONS`
-    halvings, all brackets at once; the zeros and their rows."""
+class Brackets(NamedTuple):
+    """Brackets of radii where a phase error changes sign: ``[lo, hi]``, the error at
+    ``lo``, and each one's row (departure node or delay)."""
+
+    lo: np.ndarray
+    hi: np.ndarray
+    e_lo: np.ndarray
+    rows: np.ndarray
+
+    def take(self, mask) -> Brackets:
+        return Brackets(*(v[mask] for v in self))
+
+    @classmethod
+    def joined(cls, parts) -> Brackets:
+        return cls(*(np.concatenate(v) for v in zip(*parts, strict=True)))
+
+
+def grid_brackets(error_at, grid, rows) -> Brackets:
+    """Where ``error_at(row, x)`` changes sign between neighbours of ``grid`` (not a jump
+    at +/- pi), for each of ``rows``."""
     error = error_at(rows[:, None], grid[None, :])
     cross = (np.sign(error[:, :-1]) != np.sign(error[:, 1:])) & (
         np.abs(error[:, :-1] - error[:, 1:]) < np.pi)  # fmt: skip
     at, cols = np.nonzero(cross)
-    lo, hi, e_lo = grid[cols], grid[cols + 1], error[at, cols]
-    rows = rows[at]
+    return Brackets(grid[cols], grid[cols + 1], error[at, cols], rows[at])
+
+
+def refine(error_at, brackets: Brackets):
+    """The zeros in ``brackets``, by :data:`BISECTIONS` halvings all at once; the zeros
+    and their rows."""
+    lo, hi, e_lo, rows = brackets
     for _ in range(BISECTIONS):
         mid = 0.5 * (lo + hi)
         e_mid = error_at(rows, mid)
@@ -265,15 +290,11 @@ def grid_zeros(error_at, grid, rows):
     return 0.5 * (lo + hi), rows
 
 
-def _zeros(origin, target, t_ready, grid, inc_drift, k, consts):
-    """Drift radii where the phase error vanishes, for departure nodes ``k``
-    (:func:`grid_zeros`); and their nodes."""
-
-    def error_at(node, radius):
-        return leg_at(origin, target, t_ready, radius, inc_drift, node, costs=False,
-                      **consts)["phase_error"]  # fmt: skip
-
-    return grid_zeros(error_at, grid, k)
+def grid_zeros(error_at, grid, rows):
+    """Where ``error_at(row, x)`` vanishes along ``grid`` for each of ``rows``: every sign
+    change between neighbours (not a jump at +/- pi) refined by :data:`BISECTIONS`
+    halvings, all brackets at once; the zeros and their rows."""
+    return refine(error_at, grid_brackets(error_at, grid, rows))
 
 
 def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, *, laps=0,
@@ -315,31 +336,48 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
         target (no zero of the phase error).
     """
     consts = dict(laps=laps, drift_factors=drift_factors, j2=j2, mu=mu, r_eq=r_eq)
-    found = []  # (roots, nodes, legs) of every bracket and block of nodes tried
-    in_time = False
+
+    def error_at(node, radius):
+        return leg_at(origin, target, t_ready, radius, inc_drift, node, costs=False,
+                      **consts)["phase_error"]  # fmt: skip
+
+    def arrival(node, radius):
+        return leg_at(origin, target, t_ready, radius, inc_drift, node, costs=False,
+                      **consts)["epochs"][3]  # fmt: skip
+
+    def phased(brackets):  # the good zeros of ``brackets``, their nodes and legs
+        roots, rows = refine(error_at, brackets)
+        legs = leg_at(origin, target, t_ready, roots, inc_drift, rows, **consts)
+        good = np.abs(legs["phase_error"]) < PHASE_TOL_RAD  # not a jump of the node count
+        return roots[good], rows[good], {name: value[..., good] for name, value in legs.items()}
+
+    late = []  # brackets of every bracket of radii and block of nodes tried, none in time
+    found, in_time = None, False
     for span in spans:
         low, high = max(a_drift - span, a_bounds[0]), min(a_drift + span, a_bounds[1])
         grid = np.linspace(low, high, RADIUS_POINTS)
         for block in range(NODE_BLOCKS):  # later departures only when the first meet none
             k = np.arange(block * nodes, (block + 1) * nodes)
-            roots, rows = _zeros(origin, target, t_ready, grid, inc_drift, k, consts)
-            legs = leg_at(origin, target, t_ready, roots, inc_drift, rows, **consts)
-            good = np.abs(legs["phase_error"]) < PHASE_TOL_RAD  # not a jump of the node count
-            if not good.any():
+            brackets = grid_brackets(error_at, grid, k)
+            soon = (np.minimum(arrival(brackets.rows, brackets.lo),
+                               arrival(brackets.rows, brackets.hi))
+                    <= latest_arrival + ARRIVAL_SLACK_S)  # fmt: skip
+            late.append(brackets.take(~soon))
+            if not soon.any():
                 continue
-            found.append((roots[good], rows[good], {name: value[..., good]
-                                                    for name, value in legs.items()}))
-            if (legs["epochs"][3][good] <= latest_arrival).any():
-                found, in_time = found[-1:], True
+            roots, rows, legs = phased(brackets.take(soon))
+            if (legs["epochs"][3] <= latest_arrival).any():
+                found, in_time = (roots, rows, legs), True
                 break
+            late.append(brackets.take(soon))
         if in_time:
             break
-    if not found:
+    if found is None:  # none in time: the least ΔV plus lateness of all those tried
+        found = phased(Brackets.joined(late))
+    roots, rows, legs = found
+    if not len(roots):
         raise ValueError(f"no drift radius within {spans[-1] / 1e3:g} km of the plan's and no "
                          f"departure within {NODE_BLOCKS * nodes} nodes meets the target")
-    roots = np.concatenate([f[0] for f in found])
-    rows = np.concatenate([f[1] for f in found])
-    legs = {name: np.concatenate([f[2][name] for f in found], axis=-1) for name in found[0][2]}
     dv = legs["impulses"].sum(axis=0)
     late_days = np.maximum(legs["epochs"][3] - latest_arrival, 0.0) / 86400.0
     pick = int(np.argmin(np.where(late_days > 0, np.inf, dv) if in_time
