@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import trapezoid
 
+from ..physics.elements import rtn_basis
 from ..physics.impulses import rtn
 from .oem import sample_times
 from .propagation import ForceModel, propagate
@@ -50,7 +51,7 @@ class Track:
         self.segments.append((arc.t, arc.r, arc.v))
         self.t, self.r, self.v = t_end, arc.r1, arc.v1
         accel = thrust.acceleration(arc.r, arc.v, pole)
-        local = np.stack([rtn(r, v, a) for r, v, a in zip(arc.r, arc.v, accel, strict=True)])
+        local = np.einsum("nij,nj->ni", rtn_basis(arc.r, arc.v), accel)  # each sample's RTN
         return Maneuver(start, leg, kind, trapezoid(accel, arc.t, axis=0),
                         trapezoid(local, arc.t, axis=0), end_s=t_end,
                         accel_mps2=thrust.accel, law=thrust.describe())  # fmt: skip
