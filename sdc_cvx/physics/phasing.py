@@ -191,8 +191,8 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
         first-order rates (1, 1: the first-order model; :mod:`sdc_cvx.flight.rates`
         measures them by propagation).
     costs : bool
-        False: the epochs and errors only, no ``impulses`` nor ``plane_changes`` (the
-        search for the phase error's zeros needs no more).
+        False: ``epochs`` and ``phase_error`` only (the search for the phase error's
+        zeros needs no more).
 
     Returns
     -------
@@ -224,10 +224,6 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     half_node = np.pi / drift_arglat
     m = np.maximum(np.round((t_close - t_b2) / half_node), 0.0)
     t_b3 = t_b2 + m * half_node
-    raan_residual = _wrap_pi(target.raan_at(t_b3) - (raan_b2 + drift_raan * (t_b3 - t_b2)))
-    cos_angle = (np.cos(i_d) * np.cos(target.inc)
-                 + np.sin(i_d) * np.sin(target.inc) * np.cos(raan_residual))  # fmt: skip
-    plane_3 = np.arccos(np.clip(cos_angle, -1.0, 1.0))
     up_2 = target.a >= a_d
     half_2, _ = _half_transfer(a_d, target.a, np.where(up_2, i_d, target.inc), **consts)
     t_b4 = t_b3 + half_2
@@ -235,13 +231,18 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     arglat_b1 = origin.arglat_at(t_b1)
     arrival_arglat = arglat_b1 + np.pi + m * np.pi + np.pi
     phase_error = _wrap_pi(target.arglat_at(t_b4) - arrival_arglat)
+    if not costs:
+        return {"epochs": np.stack(np.broadcast_arrays(t_b1, t_b2, t_b3, t_b4)),
+                "phase_error": phase_error}  # fmt: skip
+    raan_residual = _wrap_pi(target.raan_at(t_b3) - (raan_b2 + drift_raan * (t_b3 - t_b2)))
+    cos_angle = (np.cos(i_d) * np.cos(target.inc)
+                 + np.sin(i_d) * np.sin(target.inc) * np.cos(raan_residual))  # fmt: skip
+    plane_3 = np.arccos(np.clip(cos_angle, -1.0, 1.0))
     leg = {
         "epochs": np.stack(np.broadcast_arrays(t_b1, t_b2, t_b3, t_b4)),
         "raan_residual": raan_residual,
         "phase_error": phase_error,
     }
-    if not costs:
-        return leg
     i1, i2, p1, p2 = _hohmann_impulses(origin.a, a_d, np.abs(i_d - origin.inc), mu)
     i3, i4, p3, p4 = _hohmann_impulses(a_d, target.a, plane_3, mu)
     return leg | {
