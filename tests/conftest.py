@@ -79,3 +79,34 @@ def crash_backend(monkeypatch):
         monkeypatch.setattr(milp_solve, "solve_milp", solve_milp)
 
     return crash
+
+
+@pytest.fixture(scope="session")
+def options_by_the_paper(tmp_path_factory):
+    """``examples/options.toml`` by the paper's method, run once through the command line
+    (in process: ``run FILE --progress --method paper --out DIR``): the CLI's result, its
+    run folder, and the :class:`~sdc_cvx.solution.Solution` it solved.
+
+    The vehicle deorbits each debris (operations ΔV) and the paper's driver rejects
+    steps: what the progress lines, the run log and the iteration table must all show.
+    One run serves both the command's tests and the run folder's (14 s each).
+    """
+    from unittest import mock
+
+    from click.testing import CliRunner
+
+    from sdc_cvx.cli import main
+    from sdc_cvx.planner import api
+
+    solved, real = [], api.solve
+
+    def keeping(*args, **kwargs):
+        solved.append(real(*args, **kwargs))
+        return solved[-1]
+
+    out = tmp_path_factory.mktemp("options_by_the_paper") / "out"
+    with mock.patch.object(api, "solve", keeping):
+        result = CliRunner().invoke(main, ["run", str(EXAMPLES / "options.toml"), "--progress",
+                                           "--method", "paper", "--out", str(out)])  # fmt: skip
+    assert result.exit_code == 0 and len(solved) == 1, result.output
+    return result, out, solved[0]

@@ -456,12 +456,9 @@ def test_progress_heartbeat_names_the_phase_while_silent(capsys):
 
 
 @pytest.mark.slow
-def test_run_progress_and_run_log_say_which_steps_were_rejected(tmp_path):
-    out = tmp_path / "out"
+def test_run_progress_and_run_log_say_which_steps_were_rejected(options_by_the_paper):
     # the paper's driver is the one that rejects steps
-    result = CliRunner().invoke(main, ["run", str(EXAMPLES / "options.toml"), "--out", str(out),
-                                       "--progress", "--method", "paper"])  # fmt: skip
-    assert result.exit_code == 0, result.output
+    result, out, _ = options_by_the_paper
     rejected = [line for line in result.stderr.splitlines() if "step rejected:" in line]
     assert rejected and all("held plan worse" in line for line in rejected)
     log = (out / "run.log").read_text()

@@ -110,22 +110,11 @@ def test_save_and_plot_for_python_users(solution, tmp_path):
     assert data["path"] == list(solution.path)
 
 
-@pytest.fixture(scope="module")
-def options_solution():
+@pytest.mark.slow
+def test_summary_legs_cost_figure_and_json_agree_on_total_dv(options_by_the_paper, tmp_path):
     """examples/options.toml by the paper's method: the vehicle deorbits each debris
     (operations ΔV), and its driver rejects steps (what the iteration table must show)."""
-    from dataclasses import replace
-
-    from sdc_cvx import solve
-
-    scenario = load(EXAMPLES / "options.toml")
-    solver = replace(scenario.solver, method="paper")
-    return scenario, solve(scenario.load_catalog(), scenario.mission, solver=solver)
-
-
-@pytest.mark.slow
-def test_summary_legs_cost_figure_and_json_agree_on_total_dv(options_solution, tmp_path):
-    scenario, solution = options_solution
+    scenario, (_, _, solution) = load(EXAMPLES / "options.toml"), options_by_the_paper
     assert solution.operations_dv_mps > 0  # the case of the issue: 2985.8 against 995.8
     solution.save(tmp_path / "run", formats=(), scenario_toml=scenario.to_toml())
     total = f"{solution.total_dv_mps:.1f}"
