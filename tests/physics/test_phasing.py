@@ -119,3 +119,25 @@ def test_a_leg_with_no_drift_phases_by_moving_its_drift_orbit():
     assert in_time and leg.epochs[3] <= 60 * DAY
     assert abs(leg.phase_error) < 1e-5
     assert abs(leg.a_drift - origin.a) > 12e3  # beyond the first bracket
+
+
+@pytest.mark.parametrize("days_early", [0.0, 2.0, None])
+def test_brackets_left_unrefined_hold_no_leg_in_time(monkeypatch, days_early):
+    """Only the brackets of radii that may arrive in time are refined (the rest only if
+    none does): the leg chosen is the one that refining every bracket chooses, whether
+    the plan's own arrival is in time, one two days earlier, or none can be (an hour
+    after the start: the least ΔV plus lateness of all)."""
+    import sdc_cvx.physics.phasing as phasing
+
+    origin = orbit(800.0, 98.6, 20.0, 57.0)
+    target = orbit(850.0, 98.7, 32.0, 300.0)
+    a_plan, i_drift = R_EQ + 760e3, np.radians(98.7)
+    free, _ = phase_leg(origin, target, 0.0, a_plan, i_drift, j2=J2, mu=MU, r_eq=R_EQ)
+    latest = 3600.0 if days_early is None else free.epochs[3] - days_early * DAY
+    options = dict(latest_arrival=latest, j2=J2, mu=MU, r_eq=R_EQ, nodes=8)
+    lazy, lazy_in_time = phase_leg(origin, target, 0.0, a_plan, i_drift, **options)
+    monkeypatch.setattr(phasing, "ARRIVAL_SLACK_S", np.inf)  # every bracket refined
+    every, every_in_time = phase_leg(origin, target, 0.0, a_plan, i_drift, **options)
+    assert lazy_in_time == every_in_time == (days_early is not None)
+    assert lazy.node == every.node and lazy.a_drift == every.a_drift
+    np.testing.assert_array_equal(lazy.epochs, every.epochs)
