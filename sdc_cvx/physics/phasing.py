@@ -66,6 +66,8 @@ ARRIVAL_SLACK_S = 86400.0
 """A bracket of radii whose two ends both arrive later than this after the latest arrival
 [s] holds no leg in time (the arrival moves by less than an orbit across a bracket where
 the phase error crosses zero): it is refined only if no bracket is in time."""
+LATE_CHUNK = 20000
+"""Brackets refined at once when no phased leg is in time (:func:`_least_late`)."""
 RADIUS_POINTS = 12001
 """Points of each bracket before the zeros are refined by bisection (2 m apart in the
 first: the phase error turns up to about 8 rad per km on a half-year drift)."""
@@ -263,10 +265,6 @@ class Brackets(NamedTuple):
     def take(self, mask) -> Brackets:
         return Brackets(*(v[mask] for v in self))
 
-    @classmethod
-    def joined(cls, parts) -> Brackets:
-        return cls(*(np.concatenate(v) for v in zip(*parts, strict=True)))
-
 
 def grid_brackets(error_at, grid, rows) -> Brackets:
     """Where ``error_at(row, x)`` changes sign between neighbours of ``grid`` (not a jump
@@ -352,7 +350,7 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
         good = np.abs(legs["phase_error"]) < PHASE_TOL_RAD  # not a jump of the node count
         return roots[good], rows[good], {name: value[..., good] for name, value in legs.items()}
 
-    late = []  # brackets of every bracket of radii and block of nodes tried, none in time
+    zeros, waiting = [], []  # of the blocks tried, none in time: zeros; brackets unrefined
     found, in_time = None, False
     for span in spans:
         low, high = max(a_drift - span, a_bounds[0]), min(a_drift + span, a_bounds[1])
@@ -360,21 +358,21 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
         for block in range(NODE_BLOCKS):  # later departures only when the first meet none
             k = np.arange(block * nodes, (block + 1) * nodes)
             brackets = grid_brackets(error_at, grid, k)
-            soon = (np.minimum(arrival(brackets.rows, brackets.lo),
-                               arrival(brackets.rows, brackets.hi))
-                    <= latest_arrival + ARRIVAL_SLACK_S)  # fmt: skip
-            late.append(brackets.take(~soon))
+            soonest = np.minimum(arrival(brackets.rows, brackets.lo),
+                                 arrival(brackets.rows, brackets.hi))  # fmt: skip
+            soon = soonest <= latest_arrival + ARRIVAL_SLACK_S
+            waiting.append((brackets.take(~soon), soonest[~soon]))
             if not soon.any():
                 continue
-            roots, rows, legs = phased(brackets.take(soon))
-            if (legs["epochs"][3] <= latest_arrival).any():
-                found, in_time = (roots, rows, legs), True
+            zeros.append(phased(brackets.take(soon)))
+            if (zeros[-1][2]["epochs"][3] <= latest_arrival).any():
+                found, in_time = zeros[-1], True
                 break
-            late.append(brackets.take(soon))
         if in_time:
             break
     if found is None:  # none in time: the least ΔV plus lateness of all those tried
-        found = phased(Brackets.joined(late))
+        found = _least_late(zeros, waiting, phased, origin, target, inc_drift, latest_arrival,
+                            late_cost, mu)  # fmt: skip
     roots, rows, legs = found
     if not len(roots):
         raise ValueError(f"no drift radius within {spans[-1] / 1e3:g} km of the plan's and no "
@@ -390,3 +388,49 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
         phase_error=float(legs["phase_error"][pick]), node=int(rows[pick]),
     )  # fmt: skip
     return chosen, in_time
+
+
+def _score(legs, latest_arrival, late_cost):
+    """ΔV plus ``late_cost`` per day late [m/s] of phased legs."""
+    late_days = np.maximum(legs["epochs"][3] - latest_arrival, 0.0) / 86400.0
+    return legs["impulses"].sum(axis=0) + late_cost * late_days
+
+
+def _least_late(zeros, waiting, phased, origin, target, inc_drift, latest_arrival, late_cost,
+                mu, chunk=LATE_CHUNK):  # fmt: skip
+    """Every zero that may score below the best (ΔV plus lateness): the brackets left
+    unrefined, refined in the order of a floor of their score, until the floor reaches
+    the best refined so far; with the zeros already refined, as one ``(roots, rows,
+    legs)``.
+
+    The floor: the lateness of the earliest end of the bracket, less
+    :data:`ARRIVAL_SLACK_S`, and the ΔV of the leg's transfers with the second plane
+    change taken as the inclination difference alone (the angle between the planes is
+    never less), at the cheaper end less a centimetre per second (a bracket is metres
+    wide).
+    """
+    brackets = Brackets(*(np.concatenate([w[0][field] for w in waiting]) for field in range(4)))
+    soonest = np.concatenate([w[1] for w in waiting])
+    late_days = np.maximum(soonest - ARRIVAL_SLACK_S - latest_arrival, 0.0) / 86400.0
+
+    def transfers(a):
+        first = _hohmann_impulses(origin.a, a, np.abs(inc_drift - origin.inc), mu)
+        second = _hohmann_impulses(a, target.a, np.abs(target.inc - inc_drift), mu)
+        return first[0] + first[1] + second[0] + second[1]
+
+    floor = (np.minimum(transfers(brackets.lo), transfers(brackets.hi)) - 0.01
+             + late_cost * late_days)  # fmt: skip
+    order = np.argsort(floor)
+    best = min((float(np.min(_score(z[2], latest_arrival, late_cost)))
+                for z in zeros if len(z[0])), default=np.inf)  # fmt: skip
+    for start in range(0, len(order), chunk):
+        part = order[start:start + chunk]
+        if floor[part[0]] >= best:
+            break
+        zeros.append(phased(brackets.take(part)))
+        if len(zeros[-1][0]):
+            best = min(best, float(np.min(_score(zeros[-1][2], latest_arrival, late_cost))))
+    zeros = [z for z in zeros if len(z[0])] or [phased(brackets.take(order[:0]))]
+    return (np.concatenate([z[0] for z in zeros]), np.concatenate([z[1] for z in zeros]),
+            {name: np.concatenate([z[2][name] for z in zeros], axis=-1)
+             for name in zeros[0][2]})  # fmt: skip
