@@ -19,7 +19,10 @@ target must be there too.  Two knobs move that: the node ``k`` of the departure 
 and the drift radius (kilometres: it changes the drift's mean motion and duration).  For
 each ``k`` the phase error is a function of the drift radius with zeros every few
 kilometres; :func:`phase_leg` finds them all on a bracket of radii and keeps the cheapest
-whose arrival is late by at most the time the mission can spare.
+whose arrival is late by at most the time the mission can spare.  Each zero lies in a
+bracket of neighbouring radii of a grid, refined by bisection; only the brackets that may
+arrive in time are refined, the others only when none does (then in the order of a floor
+of their ΔV plus lateness, until the floor passes the best found).
 
 Everything here is the mean-element model with first-order secular J2 rates
 (:func:`~sdc_cvx.physics.elements.secular_rates`): the numerical replay
@@ -377,10 +380,9 @@ def phase_leg(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift,
     if not len(roots):
         raise ValueError(f"no drift radius within {spans[-1] / 1e3:g} km of the plan's and no "
                          f"departure within {NODE_BLOCKS * nodes} nodes meets the target")
-    dv = legs["impulses"].sum(axis=0)
-    late_days = np.maximum(legs["epochs"][3] - latest_arrival, 0.0) / 86400.0
-    pick = int(np.argmin(np.where(late_days > 0, np.inf, dv) if in_time
-                         else dv + late_cost * late_days))  # fmt: skip
+    late = legs["epochs"][3] > latest_arrival
+    pick = int(np.argmin(np.where(late, np.inf, legs["impulses"].sum(axis=0)) if in_time
+                         else _score(legs, latest_arrival, late_cost)))  # fmt: skip
     chosen = PhasedLeg(
         epochs=legs["epochs"][:, pick], a_drift=float(roots[pick]), inc_drift=float(inc_drift),
         impulses=legs["impulses"][:, pick], plane_changes=legs["plane_changes"][:, pick],
