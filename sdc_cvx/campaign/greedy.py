@@ -45,8 +45,9 @@ def repair(search, alone: list[Pricing], greedy: GreedyCampaign,
     left), each new pass puts more prize on the debris the passes before left over
     (squeaky wheel: Joslin and Clements, 1999), so that earlier missions take them.  Every
     pass's missions join the pool, and the integer master may combine missions of
-    several passes: it is asked after each.  Stops at the first campaign, after
-    ``tries`` passes, or at the time limit.
+    several passes: it is asked after each.  Before each new pass, the pass that failed
+    at the last launch is mended by exchanges (:func:`swap_in`).  Stops at the first
+    campaign, after ``tries`` passes, or at the time limit.
 
     References
     ----------
@@ -54,16 +55,79 @@ def repair(search, alone: list[Pricing], greedy: GreedyCampaign,
        Artificial Intelligence Research, 10, 353-373, 1999.
     """
     weight = np.ones(len(search.catalog))
-    left_over = list(greedy.left_over)
-    for attempt in range(2, tries + 2):
-        if search.plan is not None or not left_over or search.out_of_time():
+    failed = greedy
+    for attempt in range(2, tries + 3):
+        if search.plan is not None or not failed.left_over or search.out_of_time():
             return
+        swap_in(search, alone, failed)
+        if search.plan is not None or attempt == tries + 2:
+            return
+        left_over = list(failed.left_over)
         weight[left_over] += REPAIR_BOOST
         ids = ", ".join(search.catalog.ids[i] for i in left_over)
         search.say(f"  no campaign yet: greedy pass {attempt}, more prize on the debris the "
                    f"pass before left over ({ids})")  # fmt: skip
-        left_over = list(_greedy_pass(search, alone, weight, quiet=True).left_over)
+        failed = _greedy_pass(search, alone, weight, quiet=True)
         search.master_plan()
+
+
+def swap_in(search, alone: list[Pricing], failed: GreedyCampaign) -> None:
+    """Mend a greedy pass that left debris over for its last launch, by exchanges.
+
+    The last launch takes its mission from every debris, as many of those left over as
+    it can (a prize on each); some of the others it takes belong to earlier missions.  Each
+    such mission is priced again with one debris left over in place of the one taken,
+    for every pair.  All these missions join the pool: where the exchanges fit (each
+    debris left over has a mission that takes it in place of one the last launch took),
+    the integer master combines them with the pass's other missions into a campaign.
+    This is an ejection chain of one step (Glover, 1996): where greedy's last launch is
+    left a set no mission flies, most of that set and a few debris of earlier missions
+    often fly.
+
+    References
+    ----------
+    .. [1] F. Glover, "Ejection chains, reference structures and alternating path methods
+       for traveling salesman problems", Discrete Applied Mathematics, 65, 223-253, 1996.
+    """
+    last = len(search.launches) - 1
+    left = list(failed.left_over)
+    if len(failed.missions) != last or not left or search.out_of_time():
+        return
+    if not search.campaign.fewest(last) <= len(left) <= search.launches[last].mission.n:
+        return
+    dearest = _dearest(alone)
+    prices = np.zeros(len(search.catalog))
+    prices[left] = -PRIZE_FACTOR * dearest
+    taken = search.price_all([(search.variant(last, len(left)), search.unpriced(
+        prices=prices, gap_rel=0.0, tol_mps=max(search.tol, search.gap_rel / 2 * dearest)))])[0]
+    search.pool.add(taken.columns)
+    if not taken.columns:
+        return
+    debris = taken.columns[0].debris
+    owner = {i: column for column in failed.missions for i in column.debris}
+    stolen = [i for i in debris if i in owner]  # the others: left over, or no one's
+    rest = [i for i in left if i not in debris]
+    everyone = np.arange(len(search.catalog))
+    tasks = []
+    for e in stolen:
+        for r in rest:  # e's mission with r in its place: those debris exactly
+            column = owner[e]
+            keep = (set(column.debris) - {e}) | {r}
+            tasks.append((search.variant(column.launch, len(column.debris)), search.unpriced(
+                exclude=[int(i) for i in everyone if i not in keep])))  # fmt: skip
+    ids = ", ".join(search.catalog.ids[i] for i in stolen)
+    search.say(f"  {search.launches[last].label()} takes {len(left) - len(rest)} of the "
+               f"{len(left)} debris left over and {ids} of earlier missions: "
+               f"{len(tasks)} exchanges priced")  # fmt: skip
+    for result in search.price_all(tasks):
+        search.pool.add(result.columns)
+    search.master_plan()
+
+
+def _dearest(alone: list[Pricing]) -> float:
+    """The dearest launch alone [m/s] (1 km/s where none has a plan): the scale of the
+    prizes on debris that must be removed."""
+    return max((p.upper_mps for p in alone if np.isfinite(p.upper_mps)), default=1e3)
 
 
 def _greedy_pass(search, alone, weight, quiet: bool = False):
@@ -76,7 +140,7 @@ def _greedy_pass(search, alone, weight, quiet: bool = False):
     removed: list[int] = []
     missions: list[Column] = []
     required = list(search.must)
-    dearest = max((p.upper_mps for p in alone if np.isfinite(p.upper_mps)), default=1e3)
+    dearest = _dearest(alone)
     capacity = [launch.mission.n for launch in search.launches]
     say = (lambda line: None) if quiet else search.say
     for k, (launch, first) in enumerate(zip(search.launches, alone, strict=True)):

@@ -188,15 +188,26 @@ def test_a_fractional_master_with_no_campaign_is_proven_infeasible():
         solve_campaign(case.catalog(), case.campaign(), workers=1)
 
 
-def test_where_greedy_leaves_debris_over_a_greedy_pass_that_weighs_them_finds_a_campaign():
-    """Squeaky wheel (campaign/greedy.repair): the debris greedy left over get more prize,
-    an earlier mission takes them, and a campaign is in hand before any round."""
+@pytest.mark.parametrize("mend", ["exchange", "pass"])
+def test_where_greedy_leaves_debris_over_a_campaign_is_in_hand_before_any_round(monkeypatch,
+                                                                                mend):
+    """Greedy leaves two debris to the last launch that no mission of it removes together.
+    ``exchange`` (campaign/greedy.swap_in): the last launch takes one of them and a debris
+    of an earlier mission, which takes the other in its place.  ``pass`` (the exchange
+    left out; campaign/greedy.repair): the debris left over get more prize and an earlier
+    mission takes them (squeaky wheel).  Either way a campaign is in hand before any round
+    of the column generation, and the search ends at the brute force's optimum."""
+    from sdc_cvx.campaign import greedy
+
+    if mend == "pass":
+        monkeypatch.setattr(greedy, "swap_in", lambda *args: None)
     best = brute(REPAIRED)
     lines: list[str] = []
     sol = solve_campaign(REPAIRED.catalog(), REPAIRED.campaign(), workers=1, gap=GAP,
                          log=lines.append)  # fmt: skip
     assert sol.greedy.dv_mps is None and len(sol.greedy.left_over) == 2
-    assert any("greedy pass 2" in line for line in lines)
+    said = {"exchange": "takes 1 of the 2 debris left over", "pass": "greedy pass 2"}[mend]
+    assert any(said in line for line in lines), lines
     after_greedy = next(line for line in lines if "launches alone and greedy:" in line)
     assert "plan none yet" not in after_greedy, after_greedy
     assert sol.total_dv_mps <= best.dv_mps * (1 + GAP) + EPS_MPS
