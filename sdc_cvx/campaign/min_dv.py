@@ -7,8 +7,10 @@ in named steps (:class:`CampaignSearch`, one method each):
    launch priced alone (no prices): a launch with no flyable mission makes the campaign
    infeasible, said with its day.
 2. *Greedy* (the baseline): the best first mission, its debris removed, the best second
-   and so on; its missions are columns too.  Where it leaves required debris over, more
-   passes weigh them (squeaky wheel) until the pool holds a campaign.
+   and so on; its missions are columns too.  Where it leaves required debris over,
+   exchanges with the last launch and more passes that weigh them (squeaky wheel) until
+   the pool holds a campaign, whose launches are then shared out again a few at a time
+   (:mod:`~sdc_cvx.campaign.regroup`).
 3. *Column generation*: the master LP over the pool gives prices ``y`` on the debris and
    ``sigma_k`` on the launches; each launch is priced (in parallel: a process pool, or
    a Dask cluster); its columns join the pool.  Whatever the prices, the Lagrangian
@@ -49,12 +51,20 @@ from ..planner.nodes import MissionNodes
 from .greedy import greedy_campaign, repair
 from .master import solve_ip, solve_lp
 from .pricing import Column, Launch, Pricing, best_of_counts, infeasible_launch
+from .regroup import regroup
 from .result import GreedyCampaign
 
 PATH_TOL_MPS = 0.01
 """Absolute tolerance of each mission's schedule [m/s] (the single mission's)."""
 MAX_ROUNDS = 200
 """Column generation rounds at most."""
+ROUND_SHARE = 0.25
+"""Share of the time left that one round of the column generation may take: its
+pricings that would take longer stop at their share of it (a round whose prices make
+the pricing hard, as the first rounds after a dear campaign mended from greedy, would
+otherwise take all the time)."""
+ROUND_FLOOR_S = 10.0
+"""Least time a pricing of a round has [s], whatever its share."""
 EVERY_MISSION_MPS = 1e6
 """A ΔV no mission reaches [m/s] (a leg costs at most a few km/s): a window this wide
 around a launch's best mission enumerates every mission that flies from it."""
@@ -115,6 +125,7 @@ class CampaignSearch:
         self.tol = PATH_TOL_MPS
         self.backends: set[str] = set()
         self.at_once = 1  # pricings that run at once (solve_campaign sets it)
+        self.regroups = True  # a mended first campaign is shared out again (not in regroup's)
 
     # ------------------------------------------------------------------ helpers
     def remaining(self) -> float | None:
@@ -152,14 +163,20 @@ class CampaignSearch:
         self.say(f"  {step}: plan {plan}, {bound}, {len(self.pool)} columns, "
                  f"{self.pricings} pricings")  # fmt: skip
 
-    def price_all(self, tasks, *, share: bool = False) -> list[Pricing]:
+    def price_all(self, tasks, *, share: bool = False, round_share: float | None = None,
+                  ) -> list[Pricing]:  # fmt: skip
         """Run the pricing ``tasks`` (launch, keyword arguments) where they run, each with
         the schedules the pool knows of its launch's paths.  A task that waits for a
         worker has that much less time; with ``share`` (the launches alone: without each
-        launch's plan there is no campaign) never less than its share of the time left."""
+        launch's plan there is no campaign) never less than its share of the time left;
+        with ``round_share``, never more than its share of that part of the time left
+        (a round of the column generation: its pricings stopped there still bring their
+        columns and a proven bound)."""
         left = self.remaining()
         waves = -(-len(tasks) // max(self.at_once, 1))
         least = left / waves if share and left is not None else 0.0
+        if round_share is not None and left is not None:
+            left = min(left, max(ROUND_FLOOR_S, round_share * left / waves))
         known: dict[int, dict] = {}
         for column in self.pool.columns:
             known.setdefault(column.launch, {})[column.nodes] = column.schedule
@@ -243,6 +260,8 @@ class CampaignSearch:
         self.master_plan()
         if self.plan is None and greedy.left_over:
             repair(self, alone, greedy)
+            if self.plan is not None and self.regroups:  # mended, dear: shared out again
+                regroup(self)
         return greedy
 
     def generate_columns(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -261,7 +280,7 @@ class CampaignSearch:
                                    stop_above_mps=lp.sigma[launch.index] - self.tol,
                                    seeds=self.seeds(launch, lp.prices)))
                      for launch in self.variants]  # fmt: skip
-            results = self.price_all(tasks)
+            results = self.price_all(tasks, round_share=ROUND_SHARE)
             bounds = self.per_launch(results)
             lagrangian = float(bounds.sum() - lp.prices.sum())
             if np.isfinite(lagrangian) and lagrangian > self.lower:

@@ -251,3 +251,17 @@ def infeasible_launch(launch: Launch, campaign) -> str:
         "(tmax_days), fewer debris (n), a wider drift altitude band "
         f"{mission.drift_altitude_km}, another launch day"
     )
+
+
+def renumbered(column: Column, rows: list[int], sub: int, full: int,
+               launches: list[int] | None = None) -> Column:  # fmt: skip
+    """``column`` of a search over a sub-catalog and some launches, as a column of the
+    whole: its row r is ``rows[r]`` of the catalog (a node past the sub-catalog's rows,
+    the injection orbit, is as far past the catalog's), its launch k is ``launches[k]``
+    (default: the same)."""
+    def row(node: int) -> int:
+        return rows[node] if node < sub else full + node - sub
+
+    launch = column.launch if launches is None else launches[column.launch]
+    return replace(column, launch=launch, nodes=tuple(row(k) for k in column.nodes),
+                   debris=tuple(sorted(rows[k] for k in column.debris)))

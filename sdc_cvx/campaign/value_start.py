@@ -33,6 +33,7 @@ from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
 from .min_dv import CampaignSearch
 from .pricing import Column
+from .pricing import renumbered as _in_catalog
 
 START_GAP = 0.05
 """Relative gap at which the min-ΔV search of the start stops (any campaign will do)."""
@@ -138,13 +139,3 @@ def in_catalog(search: CampaignSearch, catalog: Catalog, ids) -> list[Column]:
     """The plan of :func:`shared_out` as columns of ``catalog``."""
     rows = [catalog.ids.index(k) for k in ids]
     return [_in_catalog(c, rows, len(ids), len(catalog)) for c in search.plan]
-
-
-def _in_catalog(column: Column, rows: list[int], sub: int, full: int) -> Column:
-    """``column`` of a sub-catalog (its row r is ``rows[r]`` of the catalog; a node past
-    its rows, the injection orbit, is as far past the catalog's)."""
-    def row(node: int) -> int:
-        return rows[node] if node < sub else full + node - sub
-
-    return replace(column, nodes=tuple(row(k) for k in column.nodes),
-                   debris=tuple(sorted(rows[k] for k in column.debris)))

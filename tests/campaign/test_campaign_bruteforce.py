@@ -211,3 +211,39 @@ def test_where_greedy_leaves_debris_over_a_campaign_is_in_hand_before_any_round(
     after_greedy = next(line for line in lines if "launches alone and greedy:" in line)
     assert "plan none yet" not in after_greedy, after_greedy
     assert sol.total_dv_mps <= best.dv_mps * (1 + GAP) + EPS_MPS
+
+
+def test_the_dearest_campaign_shared_out_again_is_the_brute_forces_optimum():
+    """campaign/regroup: the dearest campaign of the brute force (a set per launch, no
+    debris twice, every debris removed) put in as the plan, its launches shared out again
+    (one window: the case has three launches) give the brute force's optimum, with no
+    round of the column generation."""
+    import itertools
+
+    from sdc_cvx.campaign.min_dv import CampaignSearch
+    from sdc_cvx.campaign.pricing_runs import PricingRuns
+    from sdc_cvx.campaign.regroup import regroup
+    from sdc_cvx.milp.types import SolverOptions
+
+    best = brute(REPAIRED)
+    campaigns = [(sum(dv for _, dv in choice), [s for s, _ in choice])
+                 for choice in itertools.product(*(b.items() for b in best.per_launch))
+                 if len(frozenset().union(*(s for s, _ in choice))) == sum(REPAIRED.n)]
+    dearest, sets = max(campaigns, key=lambda c: c[0])
+    assert dearest > best.dv_mps + 30.0  # what regroup must find its way down from (927.4)
+    catalog = REPAIRED.catalog()
+    with PricingRuns(True, None, None, 1, 1) as run:
+        search = CampaignSearch(catalog, REPAIRED.campaign(), SolverOptions(), GAP, np.inf,
+                                lambda line: None, run)  # fmt: skip
+        tasks = [(search.variant(k, len(s)), search.unpriced(
+            exclude=[i for i, name in enumerate(catalog.ids) if name not in s]))
+            for k, s in enumerate(sets)]  # fmt: skip
+        plan = [result.columns[0] for result in search.price_all(tasks)]
+        search.pool.add(plan)
+        search.plan, search.upper = plan, sum(c.dv_mps for c in plan)
+        assert search.upper == pytest.approx(dearest, abs=len(sets) * GRID_TOL_MPS)
+        regroup(search)
+    assert search.upper <= best.dv_mps * (1 + GAP) + EPS_MPS
+    assert search.upper >= best.dv_mps - len(sets) * GRID_TOL_MPS
+    removed = sorted(i for c in search.plan for i in c.debris)
+    assert removed == list(range(len(catalog)))
