@@ -107,14 +107,13 @@ def swap_in(search, alone: list[Pricing], failed: GreedyCampaign) -> None:
     owner = {i: column for column in failed.missions for i in column.debris}
     stolen = [i for i in debris if i in owner]  # the others: left over, or no one's
     rest = [i for i in left if i not in debris]
-    everyone = np.arange(len(search.catalog))
     tasks = []
     for e in stolen:
         for r in rest:  # e's mission with r in its place: those debris exactly
             column = owner[e]
             keep = (set(column.debris) - {e}) | {r}
             tasks.append((search.variant(column.launch, len(column.debris)), search.unpriced(
-                exclude=[int(i) for i in everyone if i not in keep])))  # fmt: skip
+                exclude=[i for i in range(len(search.catalog)) if i not in keep])))  # fmt: skip
     ids = ", ".join(search.catalog.ids[i] for i in stolen)
     search.say(f"  {search.launches[last].label()} takes {len(left) - len(rest)} of the "
                f"{len(left)} debris left over and {ids} of earlier missions: "

@@ -22,7 +22,6 @@ References
 from __future__ import annotations
 
 import time
-from dataclasses import replace
 
 from ..errors import SdcError
 from .pricing import renumbered
@@ -55,12 +54,7 @@ def regroup(search) -> None:
         chosen = [c for c in search.plan if c.launch in window]
         rows = sorted(i for c in chosen for i in c.debris)
         ids = [catalog.ids[i] for i in rows]
-        missions = tuple(campaign.missions[k].replace(
-            exclude=tuple(d for d in campaign.missions[k].exclude if d in ids))
-            for k in window)  # fmt: skip
-        part = replace(campaign, launch_days=tuple(campaign.launch_days[k] for k in window),
-                       missions=missions, must_remove=tuple(ids), remove_all=False,
-                       n_min=tuple(campaign.fewest(k) for k in window))  # fmt: skip
+        part = campaign.removing(ids, window)
         deadline = search.deadline if each is None else min(search.deadline,
                                                             time.perf_counter() + each)
         try:

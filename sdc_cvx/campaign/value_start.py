@@ -23,7 +23,6 @@ References
 from __future__ import annotations
 
 import itertools
-from dataclasses import replace
 
 import numpy as np
 
@@ -123,10 +122,7 @@ def shared_out(catalog: Catalog, campaign: Campaign, ids, solver: SolverOptions,
     """
     if any(m.must_include or m.first for m in campaign.missions):
         raise MissionError("a mission names debris it must remove or start from")
-    missions = tuple(m.replace(exclude=tuple(k for k in m.exclude if k in ids))
-                     for m in campaign.missions)  # fmt: skip
-    shared = replace(campaign, missions=missions, objective="min-dv", must_remove=tuple(ids),
-                     remove_all=False, dv_budget_mps=(), n_min=(), values=())  # fmt: skip
+    shared = campaign.removing(ids, ranges=False)
     search = CampaignSearch(catalog.subset(ids), shared, solver, gap, deadline,
                             lambda line: None, run, stop)  # fmt: skip
     search.solve()

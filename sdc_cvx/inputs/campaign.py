@@ -17,6 +17,7 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -221,6 +222,22 @@ class Campaign:
     def fewest(self, k: int) -> int:
         """The fewest debris mission ``k`` (0-based) removes."""
         return self.n_min[k] if self.n_min else self.missions[k].n
+
+    def removing(self, ids, launches=None, *, ranges: bool = True) -> Campaign:
+        """The min-ΔV campaign of ``launches`` (indices, default all) that removes exactly
+        the debris ``ids``: every one a ``must_remove``, each mission's excluded debris
+        kept where they are among them; with ``ranges``, each mission between its fewest
+        and its most debris, else its most.  The searches over a part of a campaign use
+        it (a first campaign of high value, a window of launches shared out again)."""
+        ids = tuple(str(k) for k in ids)
+        launches = range(len(self.launch_days)) if launches is None else launches
+        missions = tuple(self.missions[k].replace(exclude=tuple(
+            d for d in self.missions[k].exclude if d in ids)) for k in launches)  # fmt: skip
+        return dataclasses.replace(
+            self, launch_days=tuple(self.launch_days[k] for k in launches), missions=missions,
+            objective="min-dv", must_remove=ids, remove_all=False, dv_budget_mps=(),
+            n_min=tuple(self.fewest(k) for k in launches) if ranges else (), values=(),
+            price_per_value_mps=None)  # fmt: skip
 
     def value_of(self, ids) -> np.ndarray:
         """The value of removing each of ``ids`` (1 each without values; 0 if not named)."""
