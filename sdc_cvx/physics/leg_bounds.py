@@ -164,14 +164,15 @@ class LegCosts:
         return self.model.cost_at(self, e, t, t_arrive, rule=rule, j2=j2, t_min=t_min)
 
     def box_bound(self, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0,
-                  cap=np.inf):  # fmt: skip
+                  cap=np.inf, floor=-np.inf):  # fmt: skip
         """Lower bound [m/s] of edges ``e`` over boxes of dates [days], in this table's model.
 
         A model may stop refining a box's bound once it reaches ``cap`` [m/s] (the value
-        returned is then at least ``cap``, and still a valid bound).
+        returned is then at least ``cap``, and still a valid bound), and may start from
+        ``floor`` [m/s], a bound already proven for the box (that of a box holding it).
         """
         return self.model.box_bound(self, e, t1, t2, t3, t4, rule=rule, j2=j2, t_min=t_min,
-                                    cap=cap)  # fmt: skip
+                                    cap=cap, floor=floor)  # fmt: skip
 
     def special_dates(self, e: int, start: float, stop: float) -> np.ndarray:
         """Dates in [start, stop] [days] a schedule of edge ``e`` may need exactly."""
@@ -418,8 +419,8 @@ class ImpulsiveModel:
     cost_at = staticmethod(leg_cost_at)
 
     def box_bound(self, legs, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0,
-                  cap=np.inf):  # fmt: skip
-        """:func:`leg_box_bound` (exact in closed form: ``cap`` saves nothing here)."""
+                  cap=np.inf, floor=-np.inf):  # fmt: skip
+        """:func:`leg_box_bound` (exact in closed form: ``cap`` and ``floor`` save nothing)."""
         return leg_box_bound(legs, e, t1, t2, t3, t4, rule=rule, j2=j2, t_min=t_min)
 
     special_dates = staticmethod(crossing_dates)

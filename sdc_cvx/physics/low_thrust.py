@@ -431,10 +431,11 @@ class LowThrustModel:
                                          rule=rule, j2=j2, t_min=t_min)  # fmt: skip
 
     def box_bound(self, legs, e, t1, t2, t3, t4, *, rule: str, j2: float, t_min: float = 0.0,
-                  cap=np.inf):  # fmt: skip
+                  cap=np.inf, floor=-np.inf):  # fmt: skip
         """:func:`~sdc_cvx.physics.low_thrust_bounds.box_bound` at this acceleration."""
         return low_thrust_bounds.box_bound(legs, e, t1, t2, t3, t4, accel=self.accel_mps2,
-                                           rule=rule, j2=j2, t_min=t_min, cap=cap)  # fmt: skip
+                                           rule=rule, j2=j2, t_min=t_min, cap=cap,
+                                           floor=floor)  # fmt: skip
 
     def closure_gap(self, origin, target, a_drift, t_depart, *, j2, mu=MU_EARTH):
         """:func:`closure_gap` at this acceleration."""

@@ -21,6 +21,8 @@ flies a speed of W.  From the cheap end of each piece an exponential search move
 frontier over intervals so proven empty; the cost at the frontier is then below the
 cost of every leg of the box on that piece (the cost rises away from the cheap end).
 The enclosure tightens as W and the box shrink, so the bound tends to the exact cost.
+A box inside one already bounded (a refined date cell) starts each piece's frontier
+where the cost reaches that bound: below it, the larger box's proof holds for it too.
 
 Dates are in days after t0, rates in rad/day, speeds in m/s, costs in m/s.
 
@@ -37,7 +39,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .low_thrust_pieces import Pieces, band_pieces
+from .low_thrust_pieces import PIECES, Pieces, edge_table
 from .transfer import CLOSED_GAP_RAD, LegAtDates
 
 TWO_PI = 2.0 * np.pi
@@ -79,31 +81,40 @@ def cost_at(legs, e, t, t_arrive, *, accel: float, rule: str, j2: float,
     """
     e, t, t_arrive = np.broadcast_arrays(np.asarray(e), np.asarray(t, float),
                                          np.asarray(t_arrive, float))  # fmt: skip
-    shape = e.shape
-    duration = t_arrive - t
-    p = band_pieces(legs, e, accel, rule, j2, shape)
-    t_all = np.broadcast_to(t, p.lo.shape)
-    d_all = np.broadcast_to(duration, p.lo.shape)
+    shape, n = e.shape, e.size
+    e_flat, t_flat, d_flat = e.ravel(), t.ravel(), (t_arrive - t).ravel()
+    # one row per (element, piece) the rule allows, numbered piece * n + element
+    table = edge_table(legs, e_flat, accel, rule, j2)
+    piece, elem = np.divmod(np.flatnonzero(table.allowed[:, e_flat].ravel()), n)
+    p = table.rows(piece, e_flat[elem])
+    duration = d_flat[elem]
     up = p.c1 >= 0  # the cost rises with w: the cheap end is the piece's low speed
     w0, w1 = np.where(up, p.lo, p.hi), np.where(up, p.hi, p.lo)
-    ok = p.allowed & (d_all >= max(t_min, 0.0)) & (p.thrust_days(w0) <= d_all + 1e-12)
+    ok = np.flatnonzero((duration >= max(t_min, 0.0)) & (p.thrust_days(w0) <= duration + 1e-12))
+    piece, elem, p, duration, w0, w1 = piece[ok], elem[ok], p.take(ok), duration[ok], w0[ok], w1[ok]
     # the radii whose thrust fits in D: from the cheap end to where t_thrust(w) = D
     with np.errstate(divide="ignore", invalid="ignore"):
-        w_fit = np.where(p.c1 != 0, (d_all * p.f_day - p.c0) / p.c1, w1)
-    w_end = np.where(p.thrust_days(w1) <= d_all, w1, np.clip(w_fit, np.minimum(w0, w1),
-                                                              np.maximum(w0, w1)))  # fmt: skip
-    root = _first_root(p, t_all, d_all, w0, w_end, ok)
-    cost = np.where(np.isfinite(root), p.dv(np.where(np.isfinite(root), root, w0)), np.inf)
-    pick = (np.argmin(cost, axis=0), *np.indices(shape))
-    value = cost[pick]
+        w_fit = np.where(p.c1 != 0, (duration * p.f_day - p.c0) / p.c1, w1)
+    w_end = np.where(p.thrust_days(w1) <= duration, w1, np.clip(w_fit, np.minimum(w0, w1),
+                                                                np.maximum(w0, w1)))  # fmt: skip
+    root = _first_root(p, t_flat[elem], duration, w0, w_end)
+    found = np.isfinite(root)
+    cost = np.full((2 * PIECES, n), np.inf)
+    cost[piece[found], elem[found]] = p.cost_of(found, root[found])
+    pick = np.argmin(cost, axis=0)
+    value = cost[pick, np.arange(n)]
+    row_of = np.zeros((2 * PIECES, n), dtype=int)
+    row_of[piece, elem] = np.arange(len(piece))
+    row = row_of[pick, np.arange(n)]
     found = np.isfinite(value)
-    w = np.where(found, root[pick], 1.0)
-    rel = p.q[pick] * w**7 - p.rate_j[pick]
-    coast = duration - (p.c0[pick] + p.c1[pick] * w) / p.f_day
-    return LegAtDates(value, np.where(found, legs.mu / w**2, np.nan),
-                      np.where(found, p.inc[pick], np.nan),
-                      np.where(found, np.where(rel >= 0, 1.0, -1.0), 0.0),
-                      np.where(found, _laps(rel, coast), 0))  # fmt: skip
+    w = np.where(found, root[row] if len(root) else 1.0, 1.0)
+    rel = p.q[row] * w**7 - p.rate_j[row] if len(root) else np.zeros(n)
+    coast = d_flat - (p.c0[row] + p.c1[row] * w) / p.f_day if len(root) else d_flat
+    inc = p.inc[row] if len(root) else np.zeros(n)
+    out = LegAtDates(value, np.where(found, legs.mu / w**2, np.nan), np.where(found, inc, np.nan),
+                     np.where(found, np.where(rel >= 0, 1.0, -1.0), 0.0),
+                     np.where(found, _laps(rel, coast), 0))  # fmt: skip
+    return LegAtDates(*(v.reshape(shape) for v in out))
 
 
 def _laps(rel, coast):
@@ -114,8 +125,9 @@ def _laps(rel, coast):
     return np.where(np.isfinite(count) & (count > 0), count, 0).astype(int)
 
 
-def _first_root(p: Pieces, t, duration, w0, w_end, ok):
-    """First speed from ``w0`` towards ``w_end`` where phi is a multiple of 2 pi (``nan``: none).
+def _first_root(p: Pieces, t, duration, w0, w_end):
+    """First speed from ``w0`` towards ``w_end`` where phi is a multiple of 2 pi (``nan``: none),
+    for 1-D pieces.
 
     phi has at most one stationary point on a piece: it is monotone on [w0, m] and on
     [m, w_end] (m the stationary point when it lies between), and the first multiple of
@@ -125,15 +137,13 @@ def _first_root(p: Pieces, t, duration, w0, w_end, ok):
     between = (stationary - w0) * (stationary - w_end) < 0
     middle = np.where(between, stationary, w_end)
     root = np.full(w0.shape, np.nan)
-    flat = p.flat()
     for start, stop in ((w0, middle), (middle, w_end)):
-        todo = ok & np.isnan(root)
-        if not todo.any():
+        index = np.flatnonzero(np.isnan(root))
+        if not len(index):
             break
-        index = np.flatnonzero(todo)
-        sub = flat.take(index)
-        a, b = start.ravel()[index], stop.ravel()[index]
-        tt, dd = t.ravel()[index], duration.ravel()[index]
+        sub = p.take(index)
+        a, b = start[index], stop[index]
+        tt, dd = t[index], duration[index]
         f_a, f_b = sub.phi(a, tt, dd), sub.phi(b, tt, dd)
         near = np.rint(f_a / TWO_PI)
         at_start = np.abs(f_a - TWO_PI * near) < CLOSED_GAP_RAD
@@ -146,7 +156,7 @@ def _first_root(p: Pieces, t, duration, w0, w_end, ok):
         inner = np.flatnonzero(hit & ~at_start)  # a multiple of 2 pi strictly inside
         w[inner] = _solve(sub.take(inner), tt[inner], dd[inner], a[inner], b[inner],
                           target[inner], f_a[inner], f_b[inner])  # fmt: skip
-        root.ravel()[index] = w
+        root[index] = w
     return root
 
 
@@ -179,7 +189,7 @@ def _solve(p: Pieces, t, duration, a, b, target, f_a, f_b):
 
 
 def box_bound(legs, e, t1, t2, t3, t4, *, accel: float, rule: str, j2: float,
-              t_min: float = 0.0, cap=np.inf):  # fmt: skip
+              t_min: float = 0.0, cap=np.inf, floor=-np.inf):  # fmt: skip
     """Lower bound [m/s] of low-thrust legs ``e`` over departures in [t1, t2], arrivals in [t3, t4].
 
     Only (t, t') with ``t' - t >= t_min`` count.  ``inf`` where no leg of the box is
@@ -199,78 +209,99 @@ def box_bound(legs, e, t1, t2, t3, t4, *, accel: float, rule: str, j2: float,
     cap : float or array_like
         A box's search stops once its bound reaches ``cap`` [m/s] (a caller that prunes
         above it needs no more): the bound returned is then at least ``cap``, still valid.
+    floor : float or array_like
+        A lower bound already proven for each box [m/s] (that of a box holding it, say):
+        no leg of the box costs less, so on each piece the search starts where the cost
+        reaches it (the pieces' speeds below are proven empty).  The bound returned is at
+        least ``floor``.
 
     Returns
     -------
     ndarray
     """
     dates = (np.asarray(v, float) for v in (t1, t2, t3, t4))
-    e, t1, t2, t3, t4, cap = np.broadcast_arrays(np.asarray(e), *dates, np.asarray(cap, float))
+    e, t1, t2, t3, t4, cap, floor = np.broadcast_arrays(np.asarray(e), *dates,
+                                                        np.asarray(cap, float),
+                                                        np.asarray(floor, float))  # fmt: skip
     out = np.empty(e.shape)
-    flat = [np.ravel(v) for v in (e, t1, t2, t3, t4, cap)]
+    flat = [np.ravel(v) for v in (e, t1, t2, t3, t4, cap, floor)]
     for start in range(0, e.size, BOX_CHUNK):  # in chunks: the search's temporaries stay small
         part = slice(start, start + BOX_CHUNK)
         out.ravel()[part] = _box_bound(legs, *(v[part] for v in flat), accel, rule, j2, t_min)
     return out
 
 
-def _box_bound(legs, e, t1, t2, t3, t4, cap, accel, rule, j2, t_min):
-    """:func:`box_bound` of a 1-D chunk of boxes."""
-    shape = e.shape
-    p = band_pieces(legs, e, accel, rule, j2, shape)
-    box = tuple(np.broadcast_to(v, p.lo.shape).ravel() for v in (t1, t2, t3, t4))
-    up = p.c1 >= 0
-    w0, w1 = np.where(up, p.lo, p.hi).ravel(), np.where(up, p.hi, p.lo).ravel()
-    flat = p.flat()
-    n_box = int(np.prod(shape))
-    bound = np.full(w0.shape, np.inf)
+def _box_bound(legs, e, t1, t2, t3, t4, cap, floor, accel, rule, j2, t_min):
+    """:func:`box_bound` of a 1-D chunk of boxes.
+
+    Works on *rows*, one per (box, piece) the rule allows, numbered ``piece * boxes + box``.
+    """
+    table = edge_table(legs, e, accel, rule, j2)
+    n_box = len(e)
+    live = np.flatnonzero(table.allowed[:, e].ravel())
+    piece, box = np.divmod(live, n_box)
+    rows = table.rows(piece, e[box])
+    dates = tuple(v[box] for v in (t1, t2, t3, t4))
+    up = rows.c1 >= 0  # the cost rises with w: the cheap end is the piece's low speed
+    w0, w1 = np.where(up, rows.lo, rows.hi), np.where(up, rows.hi, rows.lo)
+    # speeds that cost less than the floor hold no leg: the search starts where the cost
+    # reaches it (a piece that costs less throughout: anywhere, it holds no leg)
+    below = rows.dv(w0) < floor[box]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w_floor = np.clip((floor[box] - rows.c0) / rows.c1, rows.lo, rows.hi)
+    w0 = np.where(below & ~np.isnan(w_floor), w_floor, w0)
+    bound = np.full(len(live), np.inf)
     best = cap.copy()  # per box, the least bound of its settled pieces (or the cap)
 
     def settle(index, value):
         bound[index] = value
-        np.minimum.at(best, index % n_box, value)
+        np.minimum.at(best, box[index], value)
 
     def undecided(index, floor):
         # a piece whose cost here is already at least a settled piece's bound of the
         # same box cannot lower the box's bound: settle it there (a valid bound)
-        over = floor >= best[index % n_box]
+        over = floor >= best[box[index]]
         settle(index[over], floor[over])
         return ~over
 
     # a piece proven empty as a whole holds no leg (most pieces of most boxes)
-    live = np.flatnonzero(p.allowed.ravel())
-    live = live[~_empty(flat.take(live), *(v[live] for v in box), w0[live], w1[live], t_min)]
+    index = np.flatnonzero(~_empty(rows, *dates, w0, w1, t_min))
     # a piece whose cheap end may fly is exact at once
-    at_end = ~_empty(flat.take(live), *(v[live] for v in box), w0[live], w0[live], t_min)
-    settle(live[at_end], flat.cost_of(live[at_end], w0[live[at_end]]))
-    live = live[~at_end]
-    live = live[undecided(live, flat.cost_of(live, w0[live]))]
-    # frontier search: [w0, pos] is proven empty.  Each step proposes 0.9 of the distance
+    sub, sub_dates = rows.take(index), tuple(v[index] for v in dates)
+    at_end = ~_empty(sub, *sub_dates, w0[index], w0[index], t_min)
+    settle(index[at_end], rows.cost_of(index[at_end], w0[index[at_end]]))
+    index = index[~at_end]
+    index = index[undecided(index, rows.cost_of(index, w0[index]))]
+    # frontier search: [w0, pos] is proven empty.  Each step proposes 0.97 of the distance
     # at which phi's enclosure, its parts moving at their present rates, would first reach
     # a multiple of 2 pi (Newton's step); it moves only if the interval proof holds, and
     # tries a quarter of that after a miss
-    pos = w0[live].copy()
-    frac = np.full(len(live), 0.97)
+    pos = w0[index]
+    frac = np.full(len(index), 0.97)
+    sub, sub_dates, stop = rows.take(index), tuple(v[index] for v in dates), w1[index]
     for _ in range(SEARCH_ITERATIONS):
-        if not len(live):
+        if not len(index):
             break
-        sub, dates, stop = flat.take(live), tuple(v[live] for v in box), w1[live]
         ahead = np.sign(stop - pos)
-        proposal = np.maximum(frac * _first_reach(sub, dates, pos, ahead, t_min), SPEED_TOL)
+        proposal = np.maximum(frac * _first_reach(sub, sub_dates, pos, ahead, t_min), SPEED_TOL)
         nxt = np.where(proposal >= np.abs(stop - pos), stop, pos + ahead * proposal)
-        proven = _empty(sub, *dates, pos, nxt, t_min)
+        proven = _empty(sub, *sub_dates, pos, nxt, t_min)
         pos = np.where(proven, nxt, pos)
         frac = np.where(proven, 0.97, 0.25 * frac)
         # every sub-interval up to the far end proven empty: no leg on this piece
         through = proven & (nxt == stop)
         done = through | (~proven & (proposal <= SPEED_TOL))
-        settle(live[done], np.where(through[done], np.inf, sub.cost_of(done, pos[done])))
+        settle(index[done], np.where(through[done], np.inf, sub.cost_of(done, pos[done])))
         keep = ~done
-        keep[keep] = undecided(live[keep], sub.cost_of(keep, pos[keep]))
-        live, pos, frac = live[keep], pos[keep], frac[keep]
-    if len(live):  # out of steps: the frontier is still a valid bound
-        settle(live, flat.cost_of(live, pos))
-    return np.min(bound.reshape(p.lo.shape), axis=0)
+        keep[keep] = undecided(index[keep], sub.cost_of(keep, pos[keep]))
+        if not keep.all():
+            index, pos, frac, stop = index[keep], pos[keep], frac[keep], stop[keep]
+            sub, sub_dates = sub.take(keep), tuple(v[keep] for v in sub_dates)
+    if len(index):  # out of steps: the frontier is still a valid bound
+        settle(index, rows.cost_of(index, pos))
+    out = np.full(n_box, np.inf)
+    np.minimum.at(out, box, bound)
+    return np.maximum(out, floor)
 
 
 def _phi_parts(p: Pieces, t1, t2, t3, t4, x, y, t_min):

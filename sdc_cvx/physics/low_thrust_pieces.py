@@ -115,8 +115,14 @@ class Pieces(NamedTuple):
         return Pieces(*(v.ravel() for v in self[:-1]), self.f_day)
 
     def take(self, index):
-        """The rows at ``index`` of 1-D pieces."""
-        return Pieces(*(v[index] for v in self[:-1]), self.f_day)
+        """The rows at ``index`` (integers, or a mask) of 1-D pieces."""
+        index = np.flatnonzero(index) if index.dtype == bool else index
+        return Pieces(*(v.take(index) for v in self[:-1]), self.f_day)
+
+    def rows(self, piece, column):
+        """1-D pieces of rows ``(piece, column)`` of pieces shaped (2 * PIECES, count)."""
+        flat = piece * self.lo.shape[1] + column  # the fields are C-contiguous
+        return Pieces(*(v.ravel().take(flat) for v in self[:-1]), self.f_day)
 
     def cost_of(self, index, w):
         """The cost [m/s] of the rows at ``index`` of 1-D pieces at speeds ``w``."""
@@ -124,12 +130,19 @@ class Pieces(NamedTuple):
 
 
 def band_pieces(legs, e, accel: float, rule: str, j2: float, shape) -> Pieces:
-    """Pieces of the drift band of edges ``e`` for both drift inclinations, shaped ``shape``.
-
-    Each edge's are computed once per cost table (kept in ``legs.memo``), then spread to
-    the elements.
-    """
+    """Pieces of the drift band of edges ``e`` for both drift inclinations, shaped ``shape``."""
     e = np.broadcast_to(np.asarray(e), shape)
+    table = edge_table(legs, e, accel, rule, j2)
+    return Pieces(*(v[:, e] for v in table[:-1]), table.f_day)
+
+
+def edge_table(legs, e, accel: float, rule: str, j2: float) -> Pieces:
+    """Pieces of every edge of ``legs``, fields shaped (2 * PIECES, edges), those of edges
+    ``e`` filled in.
+
+    Each edge's are computed once per cost table (kept in ``legs.memo``); rows of the
+    others are left unset until asked for.
+    """
     key = ("low-thrust pieces", accel, rule, j2)
     if key not in legs.memo:
         count = len(legs.origin.a)
@@ -137,13 +150,14 @@ def band_pieces(legs, e, accel: float, rule: str, j2: float, shape) -> Pieces:
             *(np.empty((2 * PIECES, count), dtype=bool if name == "allowed" else float)
               for name in Pieces._fields[:-1]), accel * SECONDS_PER_DAY))  # fmt: skip
     done, table = legs.memo[key]
+    e = np.asarray(e)
     missing = np.unique(e[~done[e]])
     if len(missing):
         for column, value in zip(table[:-1], _edge_pieces(legs, missing, accel, rule, j2)[:-1],
                                  strict=True):  # fmt: skip
             column[:, missing] = value
         done[missing] = True
-    return Pieces(*(v[:, e] for v in table[:-1]), table.f_day)
+    return table
 
 
 def _edge_pieces(legs, e, accel: float, rule: str, j2: float) -> Pieces:

@@ -232,12 +232,12 @@ class _BoundCache:
         self.rows, self.cols, self.matrix = cells_from.ids.copy(), cells_to.ids.copy(), out
         return _BoxRequest(out, r, c, np.full(len(todo), problem.edges[k]),
                            (cells_from.lo[r], cells_from.hi[r], cells_to.lo[c] - ops,
-                            cells_to.hi[c] - ops), cap[todo])  # fmt: skip
+                            cells_to.hi[c] - ops), cap[todo], inherited[todo])  # fmt: skip
 
 
 class _BoxRequest(NamedTuple):
     """One leg's boxes to bound: rows and columns of its bound matrix ``out`` (which
-    holds their parents' bounds so far), their edge, dates and caps."""
+    holds their parents' bounds so far), their edge, dates, caps and parents' bounds."""
 
     out: np.ndarray
     rows: np.ndarray
@@ -245,6 +245,7 @@ class _BoxRequest(NamedTuple):
     edges: np.ndarray
     dates: tuple
     cap: np.ndarray
+    floor: np.ndarray
 
 
 def _bound_all(problem: PathProblem, requests: list[_BoxRequest]) -> list[np.ndarray]:
@@ -255,7 +256,8 @@ def _bound_all(problem: PathProblem, requests: list[_BoxRequest]) -> list[np.nda
                   *(np.concatenate([q.dates[i] for q in requests]) for i in range(4)))
         bounds = problem.legs.box_bound(*joined, rule=problem.rule, j2=problem.j2,
                                         t_min=problem.tmin_days,
-                                        cap=np.concatenate([q.cap for q in requests]))
+                                        cap=np.concatenate([q.cap for q in requests]),
+                                        floor=np.concatenate([q.floor for q in requests]))
         start = 0
         for q in requests:
             part = bounds[start:start + len(q.rows)]

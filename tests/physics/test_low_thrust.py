@@ -227,9 +227,13 @@ def test_box_bounds_are_never_above_a_leg_of_the_box_and_tighten_as_it_shrinks(t
             t3 = np.clip(arrive[k] - width * rng.uniform(0.1, 0.9), box[0], box[1] - width)
             box = (t3, t3 + width)
             bound = legs.box_bound(e, t1, t1, t3, t3 + width, rule="table3", j2=J2)
+            # the search may start from the bound of the box that holds this one
+            warm = legs.box_bound(e, t1, t1, t3, t3 + width, rule="table3", j2=J2,
+                                  floor=previous)  # fmt: skip
             inside = (arrive >= t3) & (arrive <= t3 + width)
-            assert bound <= dv[inside].min() + 1e-9
+            assert max(bound, warm) <= dv[inside].min() + 1e-9
             assert bound >= previous - 1e-6  # a box inside the last one: no looser
+            assert warm >= previous
             previous = bound
         assert dv[k] - previous < 0.05
 
