@@ -343,13 +343,16 @@ def _linear_range(rel_lo, rel_hi, g, t1, t2, t3, t4, d_min):
     feasible = t1 <= t_end + tol
     t_end = np.maximum(t_end, t1)
     kink = np.minimum(np.maximum(t3 - d_min, t1), t_end)
-    out = []
-    for c, pick in ((rel_lo, np.minimum), (rel_hi, np.maximum)):
-        longest = (c >= 0) if pick is np.maximum else (c < 0)
-        values = [c * np.where(longest, t4 - t, np.maximum(t3 - t, d_min)) - g * t
-                  for t in (t1, kink, t_end)]  # fmt: skip
-        out.append(pick(pick(values[0], values[1]), values[2]))
-    return np.where(feasible, out[0], np.inf), np.where(feasible, out[1], -np.inf)
+    departures = (t1, kink, t_end)
+    longest = [t4 - t for t in departures]
+    shortest = [np.maximum(t3 - t, d_min) for t in departures]
+    drift = [g * t for t in departures]
+    least = [rel_lo * np.where(rel_lo < 0, d_long, d_short) - g_t
+             for d_long, d_short, g_t in zip(longest, shortest, drift, strict=True)]  # fmt: skip
+    most = [rel_hi * np.where(rel_hi >= 0, d_long, d_short) - g_t
+            for d_long, d_short, g_t in zip(longest, shortest, drift, strict=True)]  # fmt: skip
+    return (np.where(feasible, np.minimum(np.minimum(least[0], least[1]), least[2]), np.inf),
+            np.where(feasible, np.maximum(np.maximum(most[0], most[1]), most[2]), -np.inf))
 
 
 def _empty(p: Pieces, t1, t2, t3, t4, x, y, t_min):

@@ -112,13 +112,15 @@ def cost_table_clock(search, every_s: float | None = None):
 class DateCells:
     """Date cells of every debris, each a sorted list of [lo, hi], each cell with an id of
     its own (a cell never changes: a split makes new ones), so that what was derived of a
-    cell (its arcs' bounds) can be kept."""
+    cell (its arcs' bounds) can be kept, and of the cell it was split from (``parent``:
+    an arc's bound holds for the arcs between the cells split from its ends)."""
 
     def __init__(self, n_debris, start, stop, count):
         self.lo = [np.linspace(start[i], stop, count + 1)[:-1] for i in range(n_debris)]
         self.hi = [np.linspace(start[i], stop, count + 1)[1:] for i in range(n_debris)]
         self.ids = [np.arange(i * count, (i + 1) * count) for i in range(n_debris)]
         self.next_id = n_debris * count
+        self.parent = np.arange(self.next_id)  # by id: the cell it was split from, or itself
         self.arc_bounds = None  # the last network's arc bounds by key (CellNetwork)
 
     def split(self, debris: int, cell: int, pieces: int = 2):
@@ -127,6 +129,7 @@ class DateCells:
         self.lo[debris] = np.r_[self.lo[debris][:cell], edges[:-1], self.lo[debris][cell + 1 :]]
         self.hi[debris] = np.r_[self.hi[debris][:cell], edges[1:], self.hi[debris][cell + 1 :]]
         new = np.arange(self.next_id, self.next_id + pieces)
+        self.parent = np.r_[self.parent, np.full(pieces, self.ids[debris][cell])]
         self.ids[debris] = np.r_[self.ids[debris][:cell], new, self.ids[debris][cell + 1 :]]
         self.next_id += pieces
 
@@ -136,6 +139,13 @@ class DateCells:
 
 _ID_BITS = 21
 """Bits of a cell's id (and of an edge's index) in an arc's key."""
+
+
+def _lookup(known, keys, missing):
+    """Values of ``keys`` in ``known`` (sorted keys, values), ``missing`` where absent."""
+    where = np.minimum(np.searchsorted(known[0], keys), len(known[0]) - 1)
+    hit = known[0][where] == keys
+    return np.where(hit, known[1][where], missing)
 
 
 class CellNetwork:
@@ -178,10 +188,13 @@ class CellNetwork:
         else:
             keys = (edge.astype(np.int64) << 2 * _ID_BITS) | (uid[tail] << _ID_BITS) | uid[head]
         bound = np.full(len(edge), np.nan)
+        floor = np.full(len(edge), -np.inf)  # the bound of the arc between the cells' parents
         if known is not None and len(known[0]):
-            where = np.minimum(np.searchsorted(known[0], keys), len(known[0]) - 1)
-            hit = known[0][where] == keys
-            bound[hit] = known[1][where[hit]]
+            bound = _lookup(known, keys, np.nan)
+            up = np.r_[np.arange(n), n + parts.parent]  # a node's uid -> its parent's
+            parent_keys = ((edge.astype(np.int64) << 2 * _ID_BITS) | (up[uid[tail]] << _ID_BITS)
+                           | up[uid[head]])  # fmt: skip
+            floor = _lookup(known, parent_keys, -np.inf)
         todo = np.flatnonzero(np.isnan(bound))
         for part in np.array_split(todo, max(1, len(todo) // BOUND_CHUNK)):
             if time.perf_counter() >= deadline:
@@ -192,7 +205,7 @@ class CellNetwork:
                 edge[part], self.node_lo[tail[part]], self.node_hi[tail[part]],
                 self.node_lo[head[part]] - nodes.ops_days[j],
                 self.node_hi[head[part]] - nodes.ops_days[j], rule=nodes.rule, j2=nodes.j2,
-                t_min=nodes.tmin_days)  # fmt: skip
+                t_min=nodes.tmin_days, floor=floor[part])  # fmt: skip
         order = np.argsort(keys)
         parts.arc_bounds = (keys[order], bound[order])  # for the next network
         finite = np.isfinite(bound)
