@@ -21,7 +21,9 @@ after the plan's; a leg the flight could not reach is "not flown" (status
 
 Cases: ``sso`` the 81 SSO rocket bodies of 2020 (n = 5, one year), ``gtoc9`` the GTOC9
 debris (n = 5, one year), ``sl16`` the SL-16 cluster at 71 deg
-(``examples/cluster_sl16_71deg.toml``: the whole 2020 catalogue, filtered).
+(``examples/cluster_sl16_71deg.toml``: the whole 2020 catalogue, filtered), ``drag`` the
+whole 2020 catalogue at 700-800 km and 98-99 deg (n = 4: four debris of one breakup at
+760 km that drag speeds up; its plan takes two minutes).
 
     python benchmarks/flight.py
     python benchmarks/flight.py --cases sso --rates model --planner-rates j2
@@ -42,7 +44,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "data"
-CASES = ("sso", "gtoc9", "sl16")
+CASES = ("sso", "gtoc9", "sl16", "drag")
 RATES = ("fitted", "model")
 GOAL_RATIO, GOAL_SECONDS = 1.01, 60.0
 TRANSFERS = ("depart", "drift", "leave_drift", "arrive",  # impulses, then thrust arcs
@@ -51,8 +53,8 @@ TRANSFERS = ("depart", "drift", "leave_drift", "arrive",  # impulses, then thrus
 
 def scenario(case: str, time_limit: float | None, raan_rates: str = "j2",
              accel: float | None = None):  # fmt: skip
-    """The case's scenario: catalog, selection, mission (n = 5, one year), solver; a
-    low-thrust vehicle of acceleration ``accel`` [m/s^2] when given."""
+    """The case's scenario: catalog, selection, mission (n = 5, 4 for ``drag``; one year),
+    solver; a low-thrust vehicle of acceleration ``accel`` [m/s^2] when given."""
     from sdc_cvx.study.scenario import Scenario
 
     if case == "sso":
@@ -61,10 +63,14 @@ def scenario(case: str, time_limit: float | None, raan_rates: str = "j2",
     elif case == "gtoc9":
         found = Scenario().with_overrides(
             catalog=str(SHARED / "gtoc9" / "debris_data.txt"), format="gtoc9")
+    elif case == "drag":
+        found = Scenario().with_overrides(
+            catalog=str(SHARED / "catalog_2020" / "all_2020.tle"), format="tle",
+            altitude_km=(700.0, 800.0), inclination_deg=(98.0, 99.0))
     else:
         found = Scenario.load(ROOT / "examples" / "cluster_sl16_71deg.toml")
-    found = found.with_overrides(n=5, tmax_days=365.25, time_limit_s=time_limit,
-                                 raan_rates=raan_rates)  # fmt: skip
+    found = found.with_overrides(n=4 if case == "drag" else 5, tmax_days=365.25,
+                                 time_limit_s=time_limit, raan_rates=raan_rates)  # fmt: skip
     if accel is not None:
         found = found.with_overrides(transfer="low-thrust", accel_mps2=accel)
     return found

@@ -7,11 +7,13 @@ J2 term, or a semi-major axis 5 m off) puts the vehicle 30 km from the debris, a
 debris move with J2², J3, J4 and drag terms besides (issue 26, item 4).  So the phasing
 uses rates *measured*:
 
-- ``rates="fitted"`` (the default): each target's mean RAAN and argument of latitude at
-  the two ends of the leg, from its own SGP4 states averaged over one orbit, give its
-  rates over the leg; the drift orbit's rates are those of a one-day numerical
-  propagation of it (as factors on the first-order rates, which carry the dependence on
-  the radius the phasing searches).
+- ``rates="fitted"`` (the default): each target's mean RAAN and argument of latitude
+  from its own SGP4 states averaged over one orbit, at the two ends of the leg's window
+  and every :data:`FIT_STEP_DAYS` between, give where it is over the leg (drag lowers a
+  debris and speeds its argument of latitude up: at 760 km, B* 3e-4, a line through the
+  ends of a year puts a debris 140 degrees from where SGP4 has it in the middle); the
+  drift orbit's rates are those of a one-day numerical propagation of it (as factors on
+  the first-order rates, which carry the dependence on the radius the phasing searches).
 - ``rates="model"``: each target where SGP4 has it when the leg starts, then carried by
   the first-order J2 rates of the catalog's mean elements, as the planner has them: the
   replay then shows what the model's rates alone miss.
@@ -42,6 +44,10 @@ SAMPLES = 64
 """Samples of one orbit in a mean state."""
 DRIFT_FIT_DAYS = 1.0
 """Length of the propagation that measures a drift orbit's rates [days]."""
+FIT_STEP_DAYS = 5.0
+"""Step between a target's mean states over a leg's window [days]: where drag is
+strongest in the catalogues (760 km, B* 3e-4), 3 km at most between two states followed
+linearly."""
 
 
 class MeanState(NamedTuple):
@@ -110,15 +116,36 @@ def fitted_orbit(ephemeris, position: int, t_start: float, t_end: float, guess: 
                  model: ForceModel, pole) -> MeanOrbit:  # fmt: skip
     """Debris ``position``'s mean orbit over [t_start, t_end] [s], fitted to its SGP4 states.
 
-    ``guess`` (its first-order model) counts the revolutions between the two ends.
+    Mean states at the two ends and every :data:`FIT_STEP_DAYS` between: the RAAN and the
+    argument of latitude on the line through the two ends, and how far from it each
+    state is (:class:`~sdc_cvx.physics.phasing.MeanOrbit`'s ``wander``, followed linearly
+    between the states).  The whole revolutions from one state to the next are counted
+    with the rate of the span before (the first with the ``guess``'s, its first-order
+    model): drag speeds a debris' argument of latitude up by some 1e-3 rad/day in
+    :data:`FIT_STEP_DAYS` at 760 km, too much to count a year's revolutions at once.
     """
     period = 2.0 * np.pi / guess.arglat_rate
-    ends = []
-    for t in (t_start, max(t_end - period, t_start + period)):
+    last = max(t_end - period, t_start + period)
+    count = max(int(np.ceil((last - t_start) / (FIT_STEP_DAYS * 86400.0))), 1) + 1
+    states = []
+    for t in np.linspace(t_start, last, count):
         times = _one_orbit(t, period)
         r, v = ephemeris.state(position, times)
-        ends.append(mean_state(times, r, v, mu=model.mu, pole=pole))
-    return _through(ends[0], ends[1], guess)
+        states.append(mean_state(times, r, v, mu=model.mu, pole=pole))
+    t = np.array([state.t for state in states])
+    lines, wander = {}, [t]
+    for name, rate in (("raan", guess.raan_rate), ("arglat", guess.arglat_rate)):
+        angle = [getattr(states[0], name)]
+        for k in range(1, len(states)):
+            step = getattr(states[k], name) - getattr(states[k - 1], name)
+            step += 2.0 * np.pi * np.round((rate * (t[k] - t[k - 1]) - step) / (2.0 * np.pi))
+            angle.append(angle[-1] + step)
+            rate = step / (t[k] - t[k - 1])
+        angle = np.array(angle)
+        slope = (angle[-1] - angle[0]) / (t[-1] - t[0])
+        lines[name], lines[f"{name}_rate"] = angle[0] - slope * t[0], slope
+        wander.append(angle - (angle[0] + slope * (t - t[0])))
+    return guess._replace(a=states[0].a, inc=states[0].inc, wander=tuple(wander), **lines)
 
 
 def placed_orbit(ephemeris, position: int, t_start: float, guess: MeanOrbit, model: ForceModel,

@@ -208,6 +208,12 @@ def _phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, bounds, on_time, 
     slack; else late (:func:`~sdc_cvx.physics.phasing.phase_leg`)."""
     a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
     point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
+    # the phasing's extra ΔV is over the plan's point in the same model; where that point
+    # does not arrive in time (a co-planar leg, whose RAANs the flight's model has a
+    # hundredth of a degree on the other side: the plan's radius closes them years
+    # later), over the plan's own ΔV
+    point_dv = (float(point["impulses"].sum()) if point["epochs"][3] <= latest
+                else leg.dv_mps)  # fmt: skip
     note = None
     try:
         phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan, laps=leg.laps,
@@ -221,7 +227,7 @@ def _phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, bounds, on_time, 
         in_time, note = False, "no phasing found; flown unphased"
         epochs, a_drift, model_dv = point["epochs"], a_plan, float(point["impulses"].sum())
     return {"epochs": epochs, "a_drift": a_drift, "i_drift": i_plan, "in_time": in_time,
-            "model_dv": model_dv, "point_dv": float(point["impulses"].sum()),
+            "model_dv": model_dv, "point_dv": point_dv,
             "depart": float(epochs[0]), "arrive": float(epochs[3]), "note": note}  # fmt: skip
 
 

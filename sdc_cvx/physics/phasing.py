@@ -87,6 +87,12 @@ class MeanOrbit(NamedTuple):
         RAAN and mean argument of latitude [rad] at t = 0.
     raan_rate, arglat_rate : float
         Their secular rates [rad/s].
+    wander : tuple of ndarray, optional
+        ``(t, raan, arglat)``: dates [s] and how far from those lines the RAAN and the
+        argument of latitude are there [rad], followed linearly between the dates, 0
+        outside them (a debris fitted to its SGP4 states over a window,
+        :func:`sdc_cvx.flight.rates.fitted_orbit`: drag lowers it and speeds its argument
+        of latitude up; ``None``, the lines alone).
     """
 
     a: float
@@ -96,6 +102,7 @@ class MeanOrbit(NamedTuple):
     arglat: float
     raan_rate: float
     arglat_rate: float
+    wander: tuple | None = None
 
     @classmethod
     def from_elements(cls, a, e, inc, raan, arglat, *, j2=J2, mu=MU_EARTH, r_eq=R_EARTH):
@@ -104,10 +111,27 @@ class MeanOrbit(NamedTuple):
                    float(rates.raan), float(rates.arglat))  # fmt: skip
 
     def raan_at(self, t):
-        return self.raan + self.raan_rate * np.asarray(t, dtype=float)
+        t = np.asarray(t, dtype=float)
+        return self.raan + self.raan_rate * t + self._wander(t, 1)
 
     def arglat_at(self, t):
-        return self.arglat + self.arglat_rate * np.asarray(t, dtype=float)
+        t = np.asarray(t, dtype=float)
+        return self.arglat + self.arglat_rate * t + self._wander(t, 2)
+
+    def raan_rate_at(self, t):
+        """The RAAN's rate at ``t`` [rad/s] (that of the wander's span there)."""
+        if self.wander is None:
+            return self.raan_rate
+        times, raan = self.wander[0], self.wander[1]
+        span = np.clip(np.searchsorted(times, t) - 1, 0, len(times) - 2)
+        inside = (t >= times[0]) & (t <= times[-1])
+        slope = (raan[span + 1] - raan[span]) / (times[span + 1] - times[span])
+        return self.raan_rate + np.where(inside, slope, 0.0)
+
+    def _wander(self, t, column: int):
+        if self.wander is None:
+            return 0.0
+        return np.interp(t, self.wander[0], self.wander[column], left=0.0, right=0.0)
 
 
 class PhasedLeg(NamedTuple):
@@ -217,7 +241,7 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     first_order = secular_rates(a_d, 0.0, i_d, **consts)
     drift_raan = first_order.raan * drift_factors[0]
     drift_arglat = first_order.arglat * drift_factors[1]
-    rel = drift_raan - target.raan_rate
+    rel = drift_raan - target.raan_rate_at(t_b2)
     gap = target.raan_at(t_b2) - raan_b2
     wrapped = wrap_angle(gap, rel)
     # RAANs that met during the first transfer (a zero-length leg of the plan, whose
