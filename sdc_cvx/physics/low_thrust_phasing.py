@@ -169,8 +169,8 @@ def low_thrust_leg_at(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, i
                    + plane_change_raan_change(a_d, origin.inc, target.inc, accel, **consts)
                    + spiral_raan_change(a_d, target.a, target.inc, accel, **consts))  # fmt: skip
     coast = secular_rates(a_d, 0.0, i_d, **consts)
+    rel = coast.raan * drift_factors[0] - target.raan_rate
     thrust = t_a + t_b + t_d
-    rel = coast.raan * drift_factors[0] - target.raan_rate_at(t0 + thrust)
     gap = target.raan_at(t0 + thrust) - origin.raan_at(t0) - raan_thrust
     with np.errstate(divide="ignore", invalid="ignore"):
         t_c = (wrap_angle(gap, rel) + np.sign(rel) * laps * TWO_PI) / rel

@@ -118,16 +118,6 @@ class MeanOrbit(NamedTuple):
         t = np.asarray(t, dtype=float)
         return self.arglat + self.arglat_rate * t + self._wander(t, 2)
 
-    def raan_rate_at(self, t):
-        """The RAAN's rate at ``t`` [rad/s] (that of the wander's span there)."""
-        if self.wander is None:
-            return self.raan_rate
-        times, raan = self.wander[0], self.wander[1]
-        span = np.clip(np.searchsorted(times, t) - 1, 0, len(times) - 2)
-        inside = (t >= times[0]) & (t <= times[-1])
-        slope = (raan[span + 1] - raan[span]) / (times[span + 1] - times[span])
-        return self.raan_rate + np.where(inside, slope, 0.0)
-
     def _wander(self, t, column: int):
         if self.wander is None:
             return 0.0
@@ -241,15 +231,13 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     first_order = secular_rates(a_d, 0.0, i_d, **consts)
     drift_raan = first_order.raan * drift_factors[0]
     drift_arglat = first_order.arglat * drift_factors[1]
-    rel = drift_raan - target.raan_rate_at(t_b2)
     gap = target.raan_at(t_b2) - raan_b2
-    wrapped = wrap_angle(gap, rel)
-    # RAANs that met during the first transfer (a zero-length leg of the plan, whose
-    # transfers take no time) are met, not a whole relative turn away
-    just_met = np.abs(wrapped - np.sign(rel) * TWO_PI) < np.abs(rel) * half_1
-    wrapped = np.where(just_met, wrapped - np.sign(rel) * TWO_PI, wrapped)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t_close = t_b2 + (wrapped + np.sign(rel) * laps * TWO_PI) / rel
+    t_close = t_b2 + _closing(gap, drift_raan - target.raan_rate, half_1, laps)
+    if target.wander is not None:  # its RAAN's mean rate over that coast, once more
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mean_rate = np.where(t_close > t_b2 + 1.0, (target.raan_at(t_close) - target.raan_at(
+                t_b2)) / (t_close - t_b2), target.raan_rate)  # fmt: skip
+        t_close = t_b2 + _closing(gap, drift_raan - mean_rate, half_1, laps)
     half_node = np.pi / drift_arglat
     m = np.maximum(np.round((t_close - t_b2) / half_node), 0.0)
     t_b3 = t_b2 + m * half_node
@@ -278,6 +266,18 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
         "impulses": np.stack(np.broadcast_arrays(i1, i2, i3, i4)),
         "plane_changes": np.stack(np.broadcast_arrays(p1, p2, p3, p4)),
     }
+
+
+def _closing(gap, rel, half_1, laps):
+    """The coast [s] that closes the RAAN ``gap`` [rad] at the relative rate ``rel``
+    [rad/s] (Eq. 10, the gap taken with the rate's sign), ``laps`` whole turns more."""
+    wrapped = wrap_angle(gap, rel)
+    # RAANs that met during the first transfer (a zero-length leg of the plan, whose
+    # transfers take no time) are met, not a whole relative turn away
+    just_met = np.abs(wrapped - np.sign(rel) * TWO_PI) < np.abs(rel) * half_1
+    wrapped = np.where(just_met, wrapped - np.sign(rel) * TWO_PI, wrapped)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (wrapped + np.sign(rel) * laps * TWO_PI) / rel
 
 
 class Brackets(NamedTuple):
