@@ -251,6 +251,9 @@ class CampaignSearch:
             best = result.columns[0] if result.columns else None
             self.say(f"  {launch.label()} alone: {result.upper_mps:.2f} m/s "
                      f"({self.path_text(best)}; {result.seconds:.1f} s)")  # fmt: skip
+        # the Lagrangian bound at zero prices: every launch flies one mission, none
+        # cheaper than the least its launch alone can fly
+        self.lower = max(self.lower, float(np.sum(self.alone_bounds)))
         return alone
 
     def greedy(self, alone: list[Pricing]) -> GreedyCampaign:

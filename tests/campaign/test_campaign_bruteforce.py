@@ -114,6 +114,11 @@ def test_campaign_is_the_optimum(case):
     assert sol.status == RunStatus.OPTIMAL and sol.certified, found
     assert sol.total_dv_mps - sol.lower_bound_mps <= max(GAP * sol.total_dv_mps, 0.02) + 1e-9
     assert sol.lower_bound_mps <= best.dv_mps + EPS_MPS, found
+    # the first bound, the launches alone (each flies one mission, none cheaper than its
+    # least): a proof already, before any price
+    first = sol.history[0]
+    assert first["step"] == "launches alone and greedy"
+    assert 0.0 < first["lower_mps"] <= best.dv_mps + EPS_MPS, (first, found)
     assert sol.total_dv_mps <= best.dv_mps * (1 + GAP) + EPS_MPS, found
     assert sol.total_dv_mps >= best.dv_mps - len(case.n) * GRID_TOL_MPS, found
     removed = [d for m in sol.missions for d in m.path]
