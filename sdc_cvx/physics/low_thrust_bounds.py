@@ -97,8 +97,12 @@ def cost_at(legs, e, t, t_arrive, *, accel: float, rule: str, j2: float,
         w_fit = np.where(p.c1 != 0, (duration * p.f_day - p.c0) / p.c1, w1)
     w_end = np.where(p.thrust_days(w1) <= duration, w1, np.clip(w_fit, np.minimum(w0, w1),
                                                                 np.maximum(w0, w1)))  # fmt: skip
+    if not len(piece):  # no piece of any element can fly
+        return LegAtDates(np.full(shape, np.inf), np.full(shape, np.nan),
+                          np.full(shape, np.nan), np.zeros(shape), np.zeros(shape, dtype=int))
     root = _first_root(p, t_flat[elem], duration, w0, w_end)
     found = np.isfinite(root)
+    # per element, the cheapest piece's row
     cost = np.full((2 * PIECES, n), np.inf)
     cost[piece[found], elem[found]] = p.cost_of(found, root[found])
     pick = np.argmin(cost, axis=0)
@@ -107,11 +111,11 @@ def cost_at(legs, e, t, t_arrive, *, accel: float, rule: str, j2: float,
     row_of[piece, elem] = np.arange(len(piece))
     row = row_of[pick, np.arange(n)]
     found = np.isfinite(value)
-    w = np.where(found, root[row] if len(root) else 1.0, 1.0)
-    rel = p.q[row] * w**7 - p.rate_j[row] if len(root) else np.zeros(n)
-    coast = d_flat - (p.c0[row] + p.c1[row] * w) / p.f_day if len(root) else d_flat
-    inc = p.inc[row] if len(root) else np.zeros(n)
-    out = LegAtDates(value, np.where(found, legs.mu / w**2, np.nan), np.where(found, inc, np.nan),
+    w = np.where(found, root[row], 1.0)
+    rel = p.q[row] * w**7 - p.rate_j[row]
+    coast = d_flat - (p.c0[row] + p.c1[row] * w) / p.f_day
+    out = LegAtDates(value, np.where(found, legs.mu / w**2, np.nan),
+                     np.where(found, p.inc[row], np.nan),
                      np.where(found, np.where(rel >= 0, 1.0, -1.0), 0.0),
                      np.where(found, _laps(rel, coast), 0))  # fmt: skip
     return LegAtDates(*(v.reshape(shape) for v in out))

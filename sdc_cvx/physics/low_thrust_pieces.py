@@ -57,8 +57,9 @@ def pow7(w):
 class Pieces(NamedTuple):
     """Per (choice, piece, element): the piece's ends and the coefficients on it.
 
-    Arrays are shaped (2 * PIECES, *S): the drift inclination choice (0: origin's,
-    1: target's) times the piece, for elements S.  On a piece ``beta(w) = p0 + alpha
+    Arrays are shaped (2 * PIECES, edges) in the table of every edge
+    (:func:`edge_table`): the drift inclination choice (0: origin's, 1: target's) times
+    the piece; or 1-D, one per row a search works on (:meth:`rows`).  On a piece ``beta(w) = p0 + alpha
     w^8 + gamma0 w^7`` with ``alpha = p1 - q c1 / f`` and ``gamma0 = -q c0 / f``.
     """
 
@@ -110,10 +111,6 @@ class Pieces(NamedTuple):
         w3 = w * w * w
         return w3 * w3 * (8.0 * self.alpha * w + 7.0 * (self.gamma0 + self.q * duration))
 
-    def flat(self):
-        """Every field raveled (1-D, one row per element)."""
-        return Pieces(*(v.ravel() for v in self[:-1]), self.f_day)
-
     def take(self, index):
         """The rows at ``index`` (integers, or a mask) of 1-D pieces."""
         index = np.flatnonzero(index) if index.dtype == bool else index
@@ -127,13 +124,6 @@ class Pieces(NamedTuple):
     def cost_of(self, index, w):
         """The cost [m/s] of the rows at ``index`` of 1-D pieces at speeds ``w``."""
         return self.c0[index] + self.c1[index] * w
-
-
-def band_pieces(legs, e, accel: float, rule: str, j2: float, shape) -> Pieces:
-    """Pieces of the drift band of edges ``e`` for both drift inclinations, shaped ``shape``."""
-    e = np.broadcast_to(np.asarray(e), shape)
-    table = edge_table(legs, e, accel, rule, j2)
-    return Pieces(*(v[:, e] for v in table[:-1]), table.f_day)
 
 
 def edge_table(legs, e, accel: float, rule: str, j2: float) -> Pieces:
@@ -161,7 +151,8 @@ def edge_table(legs, e, accel: float, rule: str, j2: float) -> Pieces:
 
 
 def _edge_pieces(legs, e, accel: float, rule: str, j2: float) -> Pieces:
-    """:func:`band_pieces` of the edges ``e`` (1-D), fields shaped (2 * PIECES, len(e))."""
+    """Pieces of the edges ``e`` (1-D) for both drift inclinations, fields shaped
+    (2 * PIECES, len(e))."""
     mu, r_eq = legs.mu, R_EARTH
     o, t = legs.origin, legs.target
     shape = e.shape
