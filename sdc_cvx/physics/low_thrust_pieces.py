@@ -59,8 +59,9 @@ class Pieces(NamedTuple):
 
     Arrays are shaped (2 * PIECES, edges) in the table of every edge
     (:func:`edge_table`): the drift inclination choice (0: origin's, 1: target's) times
-    the piece; or 1-D, one per row a search works on (:meth:`rows`).  On a piece ``beta(w) = p0 + alpha
-    w^8 + gamma0 w^7`` with ``alpha = p1 - q c1 / f`` and ``gamma0 = -q c0 / f``.
+    the piece; or 1-D, one per row a search works on (:meth:`rows`).  On a piece
+    ``beta(w) = p0 + alpha w^8 + gamma0 w^7`` with ``alpha = p1 - q c1 / f`` and
+    ``gamma0 = -q c0 / f``.
     """
 
     lo: np.ndarray  # piece ends [m/s]
