@@ -191,11 +191,12 @@ class CellNetwork:
         floor = np.full(len(edge), -np.inf)  # the bound of the arc between the cells' parents
         if known is not None and len(known[0]):
             bound = _lookup(known, keys, np.nan)
-            up = np.r_[np.arange(n), n + parts.parent]  # a node's uid -> its parent's
-            parent_keys = ((edge.astype(np.int64) << 2 * _ID_BITS) | (up[uid[tail]] << _ID_BITS)
-                           | up[uid[head]])  # fmt: skip
-            floor = _lookup(known, parent_keys, -np.inf)
         todo = np.flatnonzero(np.isnan(bound))
+        if known is not None and len(known[0]) and len(todo):
+            up = np.r_[np.arange(n), n + parts.parent]  # a node's uid -> its parent's
+            parent_keys = ((edge[todo].astype(np.int64) << 2 * _ID_BITS)
+                           | (up[uid[tail[todo]]] << _ID_BITS) | up[uid[head[todo]]])  # fmt: skip
+            floor[todo] = _lookup(known, parent_keys, -np.inf)
         for part in np.array_split(todo, max(1, len(todo) // BOUND_CHUNK)):
             if time.perf_counter() >= deadline:
                 raise OutOfTime(f"time limit reached while bounding the {len(edge)} arcs of "
