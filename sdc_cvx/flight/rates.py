@@ -96,42 +96,11 @@ def _one_orbit(t_start: float, period: float) -> np.ndarray:
     return t_start + np.linspace(0.0, period, SAMPLES, endpoint=False)
 
 
-def _through(first: MeanState, second: MeanState, guess: MeanOrbit) -> MeanOrbit:
-    """The mean orbit whose RAAN and argument of latitude pass through both states, the
-    whole revolutions between them counted with the ``guess``'s rates."""
-    span = second.t - first.t
-
-    def rate(start, end, guess_rate):
-        turns = np.round((guess_rate * span - (end - start)) / (2.0 * np.pi))
-        return (end - start + 2.0 * np.pi * turns) / span
-
-    raan_rate = rate(first.raan, second.raan, guess.raan_rate)
-    arglat_rate = rate(first.arglat, second.arglat, guess.arglat_rate)
-    return guess._replace(a=first.a, inc=first.inc, raan=first.raan - raan_rate * first.t,
-                          arglat=first.arglat - arglat_rate * first.t, raan_rate=raan_rate,
-                          arglat_rate=arglat_rate)  # fmt: skip
-
-
-def fitted_orbit(ephemeris, position: int, t_start: float, t_end: float, guess: MeanOrbit,
-                 model: ForceModel, pole) -> MeanOrbit:  # fmt: skip
-    """Debris ``position``'s mean orbit over [t_start, t_end] [s], fitted to its SGP4 states.
-
-    Mean states at the two ends and every :data:`FIT_STEP_DAYS` between: the RAAN and the
-    argument of latitude on the line through the two ends, and how far from it each
-    state is (:class:`~sdc_cvx.physics.phasing.MeanOrbit`'s ``wander``, followed linearly
-    between the states).  The whole revolutions from one state to the next are counted
-    with the rate of the span before (the first with the ``guess``'s, its first-order
-    model): drag speeds a debris' argument of latitude up by some 1e-3 rad/day in
-    :data:`FIT_STEP_DAYS` at 760 km, too much to count a year's revolutions at once.
-    """
-    period = 2.0 * np.pi / guess.arglat_rate
-    last = max(t_end - period, t_start + period)
-    count = max(int(np.ceil((last - t_start) / (FIT_STEP_DAYS * 86400.0))), 1) + 1
-    states = []
-    for t in np.linspace(t_start, last, count):
-        times = _one_orbit(t, period)
-        r, v = ephemeris.state(position, times)
-        states.append(mean_state(times, r, v, mu=model.mu, pole=pole))
+def _through(states: list[MeanState], guess: MeanOrbit) -> MeanOrbit:
+    """The mean orbit whose RAAN and argument of latitude pass through the first and the
+    last of ``states``, with how far from those lines the states between are (its
+    ``wander``; none for two states).  The whole revolutions from one state to the next
+    are counted with the rate of the span before (the first with the ``guess``'s)."""
     t = np.array([state.t for state in states])
     lines, wander = {}, [t]
     for name, rate in (("raan", guess.raan_rate), ("arglat", guess.arglat_rate)):
@@ -145,7 +114,31 @@ def fitted_orbit(ephemeris, position: int, t_start: float, t_end: float, guess: 
         slope = (angle[-1] - angle[0]) / (t[-1] - t[0])
         lines[name], lines[f"{name}_rate"] = angle[0] - slope * t[0], slope
         wander.append(angle - (angle[0] + slope * (t - t[0])))
-    return guess._replace(a=states[0].a, inc=states[0].inc, wander=tuple(wander), **lines)
+    return guess._replace(a=states[0].a, inc=states[0].inc, **lines,
+                          wander=tuple(wander) if len(states) > 2 else None)  # fmt: skip
+
+
+def fitted_orbit(ephemeris, position: int, t_start: float, t_end: float, guess: MeanOrbit,
+                 model: ForceModel, pole) -> MeanOrbit:  # fmt: skip
+    """Debris ``position``'s mean orbit over [t_start, t_end] [s], fitted to its SGP4 states.
+
+    Mean states at the two ends and every :data:`FIT_STEP_DAYS` between: the RAAN and the
+    argument of latitude on the line through the two ends, and how far from it each
+    state is (:class:`~sdc_cvx.physics.phasing.MeanOrbit`'s ``wander``, followed linearly
+    between the states; :func:`_through`).  ``guess``, its first-order model, counts the
+    revolutions of the first span, each span's rate those of the next: drag speeds a
+    debris' argument of latitude up by some 1e-3 rad/day in :data:`FIT_STEP_DAYS` at
+    760 km, too much to count a year's revolutions at once.
+    """
+    period = 2.0 * np.pi / guess.arglat_rate
+    last = max(t_end - period, t_start + period)
+    count = max(int(np.ceil((last - t_start) / (FIT_STEP_DAYS * 86400.0))), 1) + 1
+    states = []
+    for t in np.linspace(t_start, last, count):
+        times = _one_orbit(t, period)
+        r, v = ephemeris.state(position, times)
+        states.append(mean_state(times, r, v, mu=model.mu, pole=pole))
+    return _through(states, guess)
 
 
 def placed_orbit(ephemeris, position: int, t_start: float, guess: MeanOrbit, model: ForceModel,
@@ -174,7 +167,7 @@ def drift_factors(a: float, inc: float, t: float, model: ForceModel, pole) -> tu
     states = [propagated_mean_state(r0, v0, t, model, pole),
               propagated_mean_state(arc.r1, arc.v1, end, model, pole)]  # fmt: skip
     start = MeanOrbit(a, 0.0, inc, 0.0, 0.0, float(guess.raan), float(guess.arglat))
-    measured = _through(states[0], states[1], start)
+    measured = _through(states, start)
     mean = secular_rates(states[0].a, 0.0, states[0].inc, j2=model.j2, mu=model.mu,
                          r_eq=model.r_eq)  # fmt: skip
     return measured.raan_rate / float(mean.raan), measured.arglat_rate / float(mean.arglat)

@@ -261,11 +261,11 @@ def _box_bound(legs, e, t1, t2, t3, t4, cap, floor, accel, rule, j2, t_min):
         bound[index] = value
         np.minimum.at(best, box[index], value)
 
-    def undecided(index, floor):
+    def undecided(index, cost):
         # a piece whose cost here is already at least a settled piece's bound of the
         # same box cannot lower the box's bound: settle it there (a valid bound)
-        over = floor >= best[box[index]]
-        settle(index[over], floor[over])
+        over = cost >= best[box[index]]
+        settle(index[over], cost[over])
         return ~over
 
     # a piece proven empty as a whole holds no leg (most pieces of most boxes)

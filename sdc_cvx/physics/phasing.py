@@ -234,9 +234,10 @@ def leg_at(origin: MeanOrbit, target: MeanOrbit, t_ready, a_drift, inc_drift, no
     gap = target.raan_at(t_b2) - raan_b2
     t_close = t_b2 + _closing(gap, drift_raan - target.raan_rate, half_1, laps)
     if target.wander is not None:  # its RAAN's mean rate over that coast, once more
+        turned = target.raan_at(t_close) - target.raan_at(t_b2)
         with np.errstate(divide="ignore", invalid="ignore"):
-            mean_rate = np.where(t_close > t_b2 + 1.0, (target.raan_at(t_close) - target.raan_at(
-                t_b2)) / (t_close - t_b2), target.raan_rate)  # fmt: skip
+            mean_rate = np.where(t_close > t_b2 + 1.0, turned / (t_close - t_b2),
+                                 target.raan_rate)  # fmt: skip
         t_close = t_b2 + _closing(gap, drift_raan - mean_rate, half_1, laps)
     half_node = np.pi / drift_arglat
     m = np.maximum(np.round((t_close - t_b2) / half_node), 0.0)
