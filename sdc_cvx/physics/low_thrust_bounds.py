@@ -17,10 +17,15 @@ W and the box is enclosed by interval arithmetic: ``beta`` by its ends and its
 stationary point, ``rel`` by its ends, and ``rel D - g t`` exactly over the two ends of
 rel and the polygon ``{t in [t1, t2], t + D in [t3, t4], D >= max(T_min, min_W
 t_thrust)}`` (:func:`_linear_range`).  If that range holds no multiple of 2 pi, no leg of the box
-flies a speed of W.  From the cheap end of each piece an exponential search moves a
-frontier over intervals so proven empty; the cost at the frontier is then below the
-cost of every leg of the box on that piece (the cost rises away from the cheap end).
-The enclosure tightens as W and the box shrink, so the bound tends to the exact cost.
+flies a speed of W.  That enclosure proves whole pieces empty at once.  From the cheap
+end of each piece a search then moves a frontier over intervals proven empty; the cost
+at the frontier is below the cost of every leg of the box on that piece (the cost rises
+away from the cheap end).  Its steps use a mean-value enclosure from the frontier pos:
+phi's exact range at pos over the box plus ``(w - pos)`` times the range of phi's slope
+``w^6 (8 alpha w + 7 (gamma0 + q D))`` (:func:`_mean_value`), which keeps the
+cancellation between the thrust's and the coast's rates that the separate enclosures
+lose, so the frontier reaches the first root in a few Newton steps instead of creeping.
+Both enclosures tighten as W and the box shrink, so the bound tends to the exact cost.
 A box inside one already bounded (a refined date cell) starts each piece's frontier
 where the cost reaches that bound: below it, the larger box's proof holds for it too.
 
@@ -36,6 +41,8 @@ References
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 
@@ -227,11 +234,14 @@ def box_bound(legs, e, t1, t2, t3, t4, *, accel: float, rule: str, j2: float,
     e, t1, t2, t3, t4, cap, floor = np.broadcast_arrays(np.asarray(e), *dates,
                                                         np.asarray(cap, float),
                                                         np.asarray(floor, float))  # fmt: skip
-    out = np.empty(e.shape)
-    flat = [np.ravel(v) for v in (e, t1, t2, t3, t4, cap, floor)]
-    for start in range(0, e.size, BOX_CHUNK):  # in chunks: the search's temporaries stay small
+    # a box whose floor already reaches its cap needs no search (its parent's proof holds)
+    out = np.array(floor, dtype=float)
+    search = np.flatnonzero(floor.ravel() < cap.ravel())
+    flat = [np.ravel(v).take(search) for v in (e, t1, t2, t3, t4, cap, floor)]
+    for start in range(0, search.size, BOX_CHUNK):  # in chunks: the temporaries stay small
         part = slice(start, start + BOX_CHUNK)
-        out.ravel()[part] = _box_bound(legs, *(v[part] for v in flat), accel, rule, j2, t_min)
+        out.ravel()[search[part]] = _box_bound(legs, *(v[part] for v in flat), accel, rule, j2,
+                                               t_min)  # fmt: skip
     return out
 
 
@@ -272,14 +282,15 @@ def _box_bound(legs, e, t1, t2, t3, t4, cap, floor, accel, rule, j2, t_min):
     index = np.flatnonzero(~_empty(rows, *dates, w0, w1, t_min))
     # a piece whose cheap end may fly is exact at once
     sub, sub_dates = rows.take(index), tuple(v[index] for v in dates)
-    at_end = ~_empty(sub, *sub_dates, w0[index], w0[index], t_min)
+    at_end = _holds_multiple(*_at_speed(sub, sub_dates, w0[index], t_min)[:2])
     settle(index[at_end], rows.cost_of(index[at_end], w0[index[at_end]]))
     index = index[~at_end]
     index = index[undecided(index, rows.cost_of(index, w0[index]))]
     # frontier search: [w0, pos] is proven empty.  Each step proposes 0.97 of the distance
-    # at which phi's enclosure, its parts moving at their present rates, would first reach
-    # a multiple of 2 pi (Newton's step); it moves only if the interval proof holds, and
-    # tries a quarter of that after a miss
+    # at which the mean-value enclosure of phi from pos (its range there, its slope's
+    # range) would first reach a multiple of 2 pi at its present slope (Newton's step);
+    # it moves only if the enclosure over the step proves it empty, and tries a quarter
+    # of that after a miss
     pos = w0[index]
     frac = np.full(len(index), 0.97)
     sub, sub_dates, stop = rows.take(index), tuple(v[index] for v in dates), w1[index]
@@ -287,9 +298,10 @@ def _box_bound(legs, e, t1, t2, t3, t4, cap, floor, accel, rule, j2, t_min):
         if not len(index):
             break
         ahead = np.sign(stop - pos)
-        proposal = np.maximum(frac * _first_reach(sub, sub_dates, pos, ahead, t_min), SPEED_TOL)
+        here = _at_speed(sub, sub_dates, pos, t_min)
+        proposal = np.maximum(frac * _first_reach(sub, here, pos, ahead), SPEED_TOL)
         nxt = np.where(proposal >= np.abs(stop - pos), stop, pos + ahead * proposal)
-        proven = _empty(sub, *sub_dates, pos, nxt, t_min)
+        proven = ~_holds_multiple(*_mean_value(sub, here, pos, nxt))
         pos = np.where(proven, nxt, pos)
         frac = np.where(proven, 0.97, 0.25 * frac)
         # every sub-interval up to the far end proven empty: no leg on this piece
@@ -362,66 +374,88 @@ def _linear_range(rel_lo, rel_hi, g, t1, t2, t3, t4, d_min):
 def _empty(p: Pieces, t1, t2, t3, t4, x, y, t_min):
     """True where no leg of the box flies a speed between ``x`` and ``y`` (interval proof)."""
     beta_lo, beta_hi, linear_lo, linear_hi = _phi_parts(p, t1, t2, t3, t4, x, y, t_min)
-    lo, hi = beta_lo + linear_lo, beta_hi + linear_hi
-    no_multiple = (np.floor((hi + CLOSED_GAP_RAD) / TWO_PI)
-                   < np.ceil((lo - CLOSED_GAP_RAD) / TWO_PI))  # fmt: skip
-    return ~(linear_lo <= linear_hi) | no_multiple
+    return ~_holds_multiple(beta_lo + linear_lo, beta_hi + linear_hi)
 
 
-def _first_reach(p: Pieces, dates, pos, ahead, t_min):
-    """Distance [m/s] from ``pos`` (towards ``ahead``) at which the enclosure of phi over
-    ``[pos, pos + distance]`` would first touch a multiple of 2 pi if its parts kept their
-    rates at ``pos`` (``inf``: never).  Each part widens the enclosure on its own (the
-    interval proof does not see that they may cancel), so their rates add; the rates are
-    the parts' derivatives in w at ``pos`` (for the linear part, that of its extreme
-    departure of :func:`_linear_range`, which moves with the thrust time where the cut
-    D >= t_thrust binds)."""
+def _holds_multiple(lo, hi):
+    """True where ``[lo, hi]`` [rad] may hold a multiple of 2 pi (within CLOSED_GAP_RAD);
+    ``lo > hi`` is an empty range (no leg), which holds none."""
+    return (lo <= hi) & (np.floor((hi + CLOSED_GAP_RAD) / TWO_PI)
+                         >= np.ceil((lo - CLOSED_GAP_RAD) / TWO_PI))  # fmt: skip
+
+
+class _AtSpeed(NamedTuple):
+    """phi at one speed w over a box: its exact range [rad] (``lo > hi``: no leg of the
+    box flies w), and the range of the durations [days] of the legs that may fly there."""
+
+    lo: np.ndarray
+    hi: np.ndarray
+    d_lo: np.ndarray
+    d_hi: np.ndarray
+
+
+def _at_speed(p: Pieces, dates, w, t_min) -> _AtSpeed:
+    """phi's exact range at speed ``w`` [m/s] over the box ``dates`` (:class:`_AtSpeed`).
+
+    The legs that may fly w take D >= d_min = max(T_min, t_thrust(w)); their durations
+    lie in ``[max(t3 - min(t2, t4 - d_min), d_min), t4 - t1]``.
+    """
     t1, t2, t3, t4 = dates
-    w = pos
-    w3 = w * w * w
-    w6 = w3 * w3
-    tau = p.thrust_days(w)
-    d_min = np.maximum(max(t_min, 0.0), tau)
-    d_slope = np.where(tau > t_min, p.c1 / p.f_day, 0.0)  # d(d_min)/dw
-    rel, rel_slope = p.rel(w), 7.0 * p.q * w6
-    # the three departures of _linear_range and their rates in w
-    cut = t4 - d_min < t2
-    t_end, t_end_slope = np.where(cut, t4 - d_min, t2), np.where(cut, -d_slope, 0.0)
-    tol = 1e-12 * np.maximum(1.0, np.abs(t4) + np.abs(d_min))
-    feasible = t1 <= t_end + tol
-    t_end_slope = np.where(t_end > t1, t_end_slope, 0.0)
-    t_end = np.maximum(t_end, t1)
-    raw = t3 - d_min
-    kink = np.minimum(np.maximum(raw, t1), t_end)
-    kink_slope = np.where((raw > t1) & (raw < t_end), -d_slope,
-                          np.where(raw >= t_end, t_end_slope, 0.0))  # fmt: skip
-    # at each departure the largest value takes the longest duration where rel >= 0 and
-    # the shortest where rel < 0, the least value the other one
-    negative = rel < 0
-    for k, (t, t_rate) in enumerate(((t1, 0.0), (kink, kink_slope), (t_end, t_end_slope))):
-        short = t3 - t >= d_min
-        d_short = np.where(short, t3 - t, d_min)
-        v_long = rel * (t4 - t) - p.g * t
-        s_long = rel_slope * (t4 - t) - (rel + p.g) * t_rate
-        v_short = rel * d_short - p.g * t
-        s_short = rel_slope * d_short + rel * np.where(short, -t_rate, d_slope) - p.g * t_rate
-        v_low, s_low = np.where(negative, v_long, v_short), np.where(negative, s_long, s_short)
-        v_high, s_high = np.where(negative, v_short, v_long), np.where(negative, s_short, s_long)
-        if k == 0:
-            low, low_slope, high, high_slope = v_low, s_low, v_high, s_high
-            continue
-        less, more = v_low < low, v_high > high
-        low, low_slope = np.where(less, v_low, low), np.where(less, s_low, low_slope)
-        high, high_slope = np.where(more, v_high, high), np.where(more, s_high, high_slope)
+    d_min = np.maximum(max(t_min, 0.0), p.thrust_days(w))
+    rel = p.rel(w)
+    lo, hi = _linear_range(rel, rel, p.g, t1, t2, t3, t4, d_min)
     beta = p.beta(w) - p.gap0
-    beta_slope = ahead * w6 * (8.0 * p.alpha * w + 7.0 * p.gamma0)
-    lo, hi = beta + low, beta + high
+    return _AtSpeed(beta + lo, beta + hi, np.maximum(t3 - np.minimum(t2, t4 - d_min), d_min),
+                    t4 - t1)  # fmt: skip
+
+
+def _slope_range(p: Pieces, w_a, w_b, d_lo, d_hi):
+    """Range [rad / (m/s)] of phi's slope in w, ``w^6 (8 alpha w + 7 (gamma0 + q D))``,
+    over speeds between ``w_a`` and ``w_b`` and durations in ``[d_lo, d_hi]``.
+
+    The bracket is linear in w and D (its range: its corners), ``w^6 > 0`` monotone.
+    """
+    w_lo, w_hi = np.minimum(w_a, w_b), np.maximum(w_a, w_b)
+    a_lo, a_hi = 8.0 * p.alpha * w_lo, 8.0 * p.alpha * w_hi
+    q_lo, q_hi = 7.0 * p.q * d_lo, 7.0 * p.q * d_hi
+    rest = 7.0 * p.gamma0
+    low = np.minimum(a_lo, a_hi) + np.minimum(q_lo, q_hi) + rest
+    high = np.maximum(a_lo, a_hi) + np.maximum(q_lo, q_hi) + rest
+    w3_lo, w3_hi = w_lo * w_lo * w_lo, w_hi * w_hi * w_hi
+    w6_lo, w6_hi = w3_lo * w3_lo, w3_hi * w3_hi
+    return (low * np.where(low < 0, w6_hi, w6_lo), high * np.where(high > 0, w6_hi, w6_lo))
+
+
+def _mean_value(p: Pieces, here: _AtSpeed, pos, nxt):
+    """Mean-value enclosure [rad] of phi over speeds between ``pos`` and ``nxt`` and the
+    box: its range at ``pos`` plus ``(w - pos)`` times its slope's range.
+
+    For each leg (t, D), ``phi(w) = phi(pos) + (w - pos) phi'(xi)`` with xi between (phi
+    is smooth on a piece).  ``pos`` must be the cheaper end (the search moves away from
+    the cheap end): its thrust is the shortest, so every leg that may fly a speed of the
+    step may fly ``pos`` too and is in ``here``.  Unlike the parts' separate enclosures
+    (:func:`_empty`), it keeps the cancellation between the thrust's and the coast's
+    rates, so the frontier reaches the bound in a few steps.
+    """
+    m_lo, m_hi = _slope_range(p, pos, nxt, here.d_lo, here.d_hi)
+    step = nxt - pos
+    lo_step, hi_step = step * m_lo, step * m_hi
+    return (here.lo + np.minimum(0.0, np.minimum(lo_step, hi_step)),
+            here.hi + np.maximum(0.0, np.maximum(lo_step, hi_step)))
+
+
+def _first_reach(p: Pieces, here: _AtSpeed, pos, ahead):
+    """Distance [m/s] from ``pos`` (towards ``ahead``) at which the mean-value enclosure
+    (:func:`_mean_value`) would first touch a multiple of 2 pi if phi's slope kept its
+    range at ``pos`` (``inf``: never)."""
+    m_lo, m_hi = _slope_range(p, pos, pos, here.d_lo, here.d_hi)
+    rising = np.maximum(np.where(ahead > 0, m_hi, -m_lo), 0.0)
+    falling = np.maximum(np.where(ahead > 0, -m_lo, m_hi), 0.0)
+    lo, hi = here.lo, here.hi
     with np.errstate(invalid="ignore", divide="ignore"):
-        rising = np.maximum(beta_slope, 0) + np.maximum(ahead * high_slope, 0)
-        falling = np.maximum(-beta_slope, 0) + np.maximum(-ahead * low_slope, 0)
         # the proof counts a multiple within CLOSED_GAP_RAD of the enclosure as reached
         below = np.maximum(lo - TWO_PI * np.floor(lo / TWO_PI) - CLOSED_GAP_RAD, 0.0)
         above = np.maximum(TWO_PI * np.ceil(hi / TWO_PI) - hi - CLOSED_GAP_RAD, 0.0)
         reach = np.minimum(np.where(falling > 0, below / falling, np.inf),
                            np.where(rising > 0, above / rising, np.inf))  # fmt: skip
-    return np.where(np.isnan(reach) | ~feasible, np.inf, reach)
+    return np.where(np.isnan(reach) | ~(lo <= hi), np.inf, reach)

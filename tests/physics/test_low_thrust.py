@@ -18,7 +18,13 @@ from sdc_cvx.physics.low_thrust import (
     leg_phases,
     spiral_raan_change,
 )
-from sdc_cvx.physics.low_thrust_bounds import _linear_range
+from sdc_cvx.physics.low_thrust_bounds import (
+    BOUND_TOL_MPS,
+    _at_speed,
+    _linear_range,
+    _mean_value,
+)
+from sdc_cvx.physics.low_thrust_pieces import edge_table
 from sdc_cvx.physics.transfer import NodeOrbits, hohmann_dv
 
 R = 6378137.0
@@ -299,6 +305,64 @@ def test_the_linear_part_range_is_the_exact_range_over_the_dates():
         scale = (abs(r_lo) + abs(r_hi) + abs(g)) * 25 / 200
         assert lo <= values.min() + 1e-15 and hi >= values.max() - 1e-15
         assert values.min() - lo <= scale and hi - values.max() <= scale
+
+
+@pytest.mark.parametrize("rule", ["table3", "free"])
+def test_a_box_shrunk_to_a_point_is_bounded_within_the_stated_tolerance(table, rule):
+    """The certified search's resolution rests on it: the bound of a point box (one
+    departure, one arrival) is at most BOUND_TOL_MPS under the exact cost there, never
+    above it, and inf exactly where no leg flies."""
+    _, i, _, legs = table
+    rng = np.random.default_rng(17)
+    e = rng.integers(0, len(i), 3000)
+    t = rng.uniform(0, 300, 3000)
+    arrive = t + rng.uniform(0, 200, 3000)
+    exact = legs.cost_at(e, t, arrive, rule=rule, j2=J2).cost
+    bound = legs.box_bound(e, t, t, arrive, arrive, rule=rule, j2=J2)
+    flies = np.isfinite(exact)
+    assert flies.sum() > 200
+    assert (np.isinf(bound) == ~flies).all()
+    assert (bound[flies] <= exact[flies] + 1e-9).all()
+    assert (exact[flies] - bound[flies]).max() <= BOUND_TOL_MPS
+
+
+def test_the_mean_value_enclosure_holds_phi_over_the_step_and_the_box(table):
+    """phi at sampled speeds of a step away from the cheap end, departures and arrivals
+    of the box, with D at least the thrust time at that speed and T_min, lies inside the
+    enclosure: its range at the step's start plus the step times its slope's range."""
+    _, i, _, legs = table
+    rng = np.random.default_rng(29)
+    f = 1e-4
+    pieces = edge_table(legs, np.arange(len(i)), f, "free", J2)
+    checked = 0
+    for _ in range(400):
+        e, piece = int(rng.integers(len(i))), int(rng.integers(pieces.lo.shape[0]))
+        p = pieces.rows(np.array([piece]), np.array([e]))
+        if not p.hi[0] > p.lo[0]:
+            continue
+        up = p.c1[0] >= 0
+        cheap = p.lo if up else p.hi
+        pos = cheap + (1 if up else -1) * rng.uniform(0, 0.5) * (p.hi - p.lo)
+        nxt = pos + (1 if up else -1) * rng.choice([1e-3, 0.1, 10.0]) * rng.uniform(0, 1)
+        nxt = np.clip(nxt, p.lo, p.hi)
+        t1 = rng.uniform(0, 200)
+        t3 = t1 + rng.uniform(0, 150)
+        dates = tuple(np.array([v]) for v in (t1, t1 + rng.uniform(0, 5), t3,
+                                              t3 + rng.uniform(0, 5)))  # fmt: skip
+        t_min = rng.choice([0.0, 20.0])
+        lo, hi = _mean_value(p, _at_speed(p, dates, pos, t_min), pos, nxt)
+        w = np.linspace(pos[0], nxt[0], 41)[:, None, None]
+        t = np.linspace(dates[0][0], dates[1][0], 21)[None, :, None]
+        arrive = np.linspace(dates[2][0], dates[3][0], 21)[None, None, :]
+        d = arrive - t
+        flies = (d >= np.maximum(t_min, p.thrust_days(w))) & (d >= 0)
+        if not flies.any():
+            continue
+        phi = p.phi(w, t, d)[flies]
+        scale = 1e-9 * (1.0 + np.abs(phi).max())
+        assert lo[0] <= phi.min() + scale and phi.max() - scale <= hi[0]
+        checked += 1
+    assert checked > 150
 
 
 def test_the_pre_optimisation_bound_t0_bounds_the_coast_and_thrust_comes_on_top(table):
