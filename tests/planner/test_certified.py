@@ -133,27 +133,65 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
         on_chunk(3, 10**12)
 
 
-@pytest.mark.slow
-def test_the_milp_relaxation_still_certifies_where_labels_give_up(monkeypatch):
-    """Labels give up on large networks (more than a million of one length) and the MILP
-    solves the relaxation instead: with labels always giving up, the search still reaches
-    the reference optimum of syn10 (an independent exhaustive search's) with a valid bound."""
+def reference_case(name: str):
+    """A reference case's catalog, mission and certified optimum (skip without them)."""
     import json
 
-    from sdc_cvx import Mission, solve
-    from sdc_cvx.planner.certified import network
+    from sdc_cvx import Mission
 
     from ..conftest import SHARED_DATA
 
     cases = SHARED_DATA / "reference_cases"
     if not (cases / "optima.json").is_file():
         pytest.skip("reference cases not found")
-    data = json.loads((cases / "optima.json").read_text())["syn10"]
+    data = json.loads((cases / "optima.json").read_text())[name]
+    return (Catalog.from_csv(cases / data["catalog"]),
+            Mission(n=data["n"], tmax_days=data["tmax_days"]),
+            data["table3"]["optimum_dv_mps"])  # fmt: skip
+
+
+@pytest.mark.slow
+def test_the_milp_relaxation_still_certifies_where_labels_give_up(monkeypatch):
+    """Labels give up on large networks (more than a million of one length) and the MILP
+    solves the relaxation instead: with both kinds of labels always giving up, the search
+    still reaches the reference optimum of syn10 (an independent exhaustive search's) with
+    a valid bound."""
+    from sdc_cvx import solve
+    from sdc_cvx.network.ng_routes import RouteRelaxation
+    from sdc_cvx.planner.certified import network
+
+    catalog, mission, optimum = reference_case("syn10")
     monkeypatch.setattr(network, "cheapest_path", lambda *args, **kwargs: None)
-    solution = solve(Catalog.from_csv(cases / data["catalog"]),
-                     Mission(n=data["n"], tmax_days=data["tmax_days"]))  # fmt: skip
-    optimum = data["table3"]["optimum_dv_mps"]
+    monkeypatch.setattr(network, "route_relaxation",
+                        lambda *args, **kwargs: RouteRelaxation(-np.inf, None, None))  # fmt: skip
+    solution = solve(catalog, mission)
     assert solution.certified and solution.backend != "labels"
+    assert solution.total_dv_mps <= optimum * 1.001 + 0.01
+    assert solution.lower_bound_mps <= optimum + 1e-6
+
+
+@pytest.mark.parametrize("name", ["syn10", "lg8"])
+def test_route_labels_certify_where_the_exact_labels_give_up(name, monkeypatch):
+    """Where the exact labels give up, the ng-route labels solve the relaxation (exactly,
+    once their cheapest route is a path): with the exact labels always giving up, the
+    search reaches the reference optimum (an independent exhaustive search's) with a
+    valid bound and no MILP."""
+    from sdc_cvx import solve
+    from sdc_cvx.network import ng_routes
+    from sdc_cvx.planner.certified import network
+
+    catalog, mission, optimum = reference_case(name)
+    calls = []
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return ng_routes.route_relaxation(*args, **kwargs)
+
+    monkeypatch.setattr(network, "cheapest_path", lambda *args, **kwargs: None)
+    monkeypatch.setattr(network, "route_relaxation", counted)
+    solution = solve(catalog, mission)
+    assert calls and solution.certified
+    assert solution.model_size["milp_solves"] == 0
     assert solution.total_dv_mps <= optimum * 1.001 + 0.01
     assert solution.lower_bound_mps <= optimum + 1e-6
 

@@ -21,6 +21,7 @@ import time
 
 import numpy as np
 
+from ...network.ng_routes import route_relaxation
 from ...network.path_bounds import (
     NetworkArcs,
     cheapest_path,
@@ -157,6 +158,8 @@ class CellNetwork:
         ``parts`` is not bounded again (``parts.arc_bounds``)."""
         n = len(nodes.ops_days)
         self.n_debris = n
+        self.deadline = deadline
+        self.neighbourhoods = None  # the route relaxation's, as grown (:meth:`pruned`)
         # node ids: starts 0..n-1, then the cells of each debris in order
         self.offset = np.cumsum([n] + [len(parts.lo[i]) for i in range(n)])[:-1]
         self.n_nodes = int(self.offset[-1] + len(parts.lo[n - 1])) if n else 0
@@ -214,17 +217,21 @@ class CellNetwork:
         self.arcs = Arcs(tail[finite], head[finite], edge_from[self.edge], edge_to[self.edge],
                          bound[finite] + nodes.cost_mps[edge_to[self.edge]])  # fmt: skip
 
-    def pruned(self, nodes: CertifiedNodes, start_allowed, upper: float, settled=()):
+    def pruned(self, nodes: CertifiedNodes, start_allowed, upper: float, settled=(),
+               neighbourhoods=None):  # fmt: skip
         """Arcs that can lie on a plan within ``upper``, and the relaxation over them.
 
         Leg 0 leaves a start node (its operations cost added to the arc), later legs
         leave cells.  An arc leaves when the cheapest walk of L legs through it exceeds
         ``upper`` (:func:`~sdc_cvx.network.path_bounds.walk_bounds`).  The relaxation,
         the cheapest path of the network that is none of the ``settled`` ones, is then
-        solved by labels (:func:`~sdc_cvx.network.path_bounds.cheapest_path`).  Where
-        the labels are too many, arcs also leave when the cheapest path through them
+        solved by labels (:func:`~sdc_cvx.network.path_bounds.cheapest_path`); where
+        they are too many, by ng-route labels (:func:`~sdc_cvx.network.ng_routes.
+        route_relaxation`, from ``neighbourhoods``, a previous network's; the grown ones
+        are kept in ``self.neighbourhoods``), exact when the cheapest route is a path.
+        Where neither solves it, arcs also leave when the cheapest path through them
         exceeds ``upper`` (:func:`~sdc_cvx.network.path_bounds.elementary_bounds`),
-        for the relaxation MILP that then solves it.
+        for the relaxation MILP that then solves it (the routes' bound still counts).
 
         Returns
         -------
@@ -232,8 +239,7 @@ class CellNetwork:
         exact : CheapestPath or None
             The relaxation's path, None when the labels were too many.
         bound : float
-            No path of the network costs less [m/s] (the settled ones included when
-            ``exact`` is None).
+            No path of the network that is not settled costs less [m/s].
         """
         a = self.arcs
         from_start = a.tail < self.n_debris
@@ -244,17 +250,25 @@ class CellNetwork:
         walks = walk_bounds(network, nodes.legs)
         self.completion = walks[1]
         near = walks[2] <= upper + 1e-9  # inf: on no walk
+        routes, self.neighbourhoods = -np.inf, neighbourhoods  # -inf: no route bound yet
         if np.isfinite(upper):
             exact = cheapest_path(network.take(near), nodes.legs, self.node_debris, upper,
                                   walks, excluded=settled,
                                   must_visit=nodes.must_visit)  # fmt: skip
+            if exact is None and not len(nodes.must_visit):  # routes forget what they visited
+                relaxed = route_relaxation(network.take(near), nodes.legs, self.node_debris,
+                                           upper, walks, excluded=settled,
+                                           neighbourhoods=neighbourhoods,
+                                           deadline=self.deadline)  # fmt: skip
+                self.neighbourhoods, exact, routes = (relaxed.neighbourhoods, relaxed.path,
+                                                      relaxed.bound)  # fmt: skip
             if exact is not None:
                 return priced.take(near), exact, exact.cost
         through, cheapest = elementary_bounds(network, nodes.legs, self.node_debris, upper, walks)
         if through is None:
             through = walks[2]
         keep = np.isfinite(through) & (through <= upper + 1e-9)  # inf: on no path
-        return priced.take(keep), None, cheapest
+        return priced.take(keep), None, max(cheapest, routes)
 
 
 def refine_cells(parts: DateCells, net: CellNetwork, arcs: Arcs, chosen, pieces: int = 2):

@@ -11,8 +11,10 @@ transfer model of Part III):
    (:mod:`~sdc_cvx.planner.certified.network`) prices each arc by the exact lower bound
    of its leg over its box of dates, and its relaxation (the cheapest path of L legs
    that is none of the settled paths) is a lower bound of the mission.  Labels solve
-   it exactly (:func:`~sdc_cvx.network.path_bounds.cheapest_path`); a MILP
-   (:mod:`~sdc_cvx.planner.certified.relaxation`) where the labels are too many;
+   it exactly (:func:`~sdc_cvx.network.path_bounds.cheapest_path`); where they are too
+   many, ng-route labels (:func:`~sdc_cvx.network.ng_routes.route_relaxation`, exact
+   when their cheapest route is a path); a MILP
+   (:mod:`~sdc_cvx.planner.certified.relaxation`) where both give up;
 3. the relaxation's path is optimised globally as a fixed path
    (:func:`~sdc_cvx.planner.fixed_path.solve_path`): a plan that flies, i.e. an upper
    bound, and a certified lower bound of that path alone; it is then settled (excluded
@@ -107,10 +109,8 @@ class _Search:
         self.edge_from, self.edge_to = ii[usable], jj[usable]
         self.edge_index = {(int(a), int(b)): k for k, (a, b) in
                            enumerate(zip(self.edge_from, self.edge_to, strict=True))}  # fmt: skip
-        say(
-            f"certified search: {n} debris, {len(self.edge_from)} edges, {nodes.legs} legs; "
-            "cost tables of every edge"
-        )
+        say(f"certified search: {n} debris, {len(self.edge_from)} edges, {nodes.legs} legs; "
+            "cost tables of every edge")  # fmt: skip
         self.find_greedy = lambda: find_greedy(self, orbits, a_low, a_high)
         self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
                                    a_low, a_high, model=nodes.model,
@@ -126,8 +126,8 @@ class _Search:
         self.known = dict(known or {})  # path -> a schedule certified before (a campaign's)
         self.proven = -np.inf  # the best lower bound so far: every bound found stays valid
         self.trace: list[tuple[float, float, float]] = []  # (clock, bound, plan) on a change
-        self.completion = None  # per node, cheapest walk of k legs from it (network())
-        self.exact = None  # (settled paths, the last network's relaxation by labels, seconds)
+        # network()'s: each node's cheapest walks, the labels' relaxation, route neighbourhoods
+        self.completion, self.exact, self.neighbourhoods = None, None, None
         self.notes: list[str] = []
         self.limited = False  # a limit, not the search's own criterion, ended it
 
@@ -206,7 +206,8 @@ class _Search:
                        self.deadline)  # fmt: skip
         started = time.perf_counter()
         arcs, exact, network_lower = net.pruned(self.nodes, self.start_allowed, self.level,
-                                                self.settled)  # fmt: skip
+                                                self.settled, self.neighbourhoods)  # fmt: skip
+        self.neighbourhoods = net.neighbourhoods
         self.prove(min(network_lower, self.upper))
         self.completion = net.completion
         self.exact = None if exact is None else (len(self.settled), exact,
