@@ -118,6 +118,7 @@ class CampaignSearch:
         self.must = tuple(index[k] for k in campaign.required(catalog))
         self.pool = _Pool()
         self.upper, self.plan, self.lower = np.inf, None, -np.inf
+        self.lagrangian = -np.inf  # the best Lagrangian bound L(y), that of the closing's prices
         self.history: list[dict] = []
         self.clock = time.perf_counter()
         self.pricings = 0
@@ -252,8 +253,13 @@ class CampaignSearch:
             self.say(f"  {launch.label()} alone: {result.upper_mps:.2f} m/s "
                      f"({self.path_text(best)}; {result.seconds:.1f} s)")  # fmt: skip
         # the Lagrangian bound at zero prices: every launch flies one mission, none
-        # cheaper than the least its launch alone can fly
-        self.lower = max(self.lower, float(np.sum(self.alone_bounds)))
+        # cheaper than the least its launch alone can fly; and with debris that must go
+        # (remove_all: every one), the missions' sizes add up to at least their number
+        self.lagrangian = float(np.sum(self.alone_bounds))
+        sizes: dict[int, dict[int, float]] = {}
+        for variant, result in zip(self.variants, results, strict=True):
+            sizes.setdefault(variant.index, {})[variant.mission.n] = result.lower_mps
+        self.lower = max(self.lower, self.lagrangian, sizes_bound(sizes, len(self.must)))
         return alone
 
     def greedy(self, alone: list[Pricing]) -> GreedyCampaign:
@@ -286,9 +292,10 @@ class CampaignSearch:
             results = self.price_all(tasks, round_share=ROUND_SHARE)
             bounds = self.per_launch(results)
             lagrangian = float(bounds.sum() - lp.prices.sum())
-            if np.isfinite(lagrangian) and lagrangian > self.lower:
+            if np.isfinite(lagrangian) and lagrangian > self.lagrangian:
                 # the closing step needs the prices of the bound it closes from
-                self.lower, last = lagrangian, (lp.prices, bounds)
+                self.lagrangian, last = lagrangian, (lp.prices, bounds)
+                self.lower = max(self.lower, lagrangian)
             new = sum(self.pool.add(r.columns) for r in results)
             self.master_plan()
             self.record(f"round {round_} (LP {lp.value:.2f} m/s, {new} new columns)", lp.value)
@@ -322,7 +329,7 @@ class CampaignSearch:
             window = EVERY_MISSION_MPS
             self.say("  no campaign in the pool: every mission that flies, launch by launch")
         else:
-            window = self.upper - self.lower
+            window = self.upper - self.lagrangian  # L(prices): the argument's own bound
             self.say(f"  closing the gap: every mission within {window:.2f} m/s of its "
                      "launch's best reduced cost")  # fmt: skip
         ceilings = np.asarray(bounds) + window + self.tol
@@ -382,3 +389,26 @@ def shown_bound(lower: float) -> float | None:
     bound, and an early master LP, priced against artificial columns, may prove less);
     None while none is proven (``-inf``)."""
     return max(float(lower), 0.0) if np.isfinite(lower) else None
+
+
+def sizes_bound(bounds: dict[int, dict[int, float]], required: int) -> float:
+    """The least sum of the launches' bounds over mission sizes that remove at least
+    ``required`` debris in all [m/s] (a dynamic programme over launches and debris).
+
+    ``bounds[k][n]``: no mission of launch k with n debris costs less [m/s].  Every
+    campaign flies one mission per launch, no debris twice, and removes the debris that
+    must go: its sizes add up to at least their number, and each mission costs at least
+    its launch's bound for its size.  With nothing required, the sum of each launch's
+    least bound.
+    """
+    if not all(bound > -np.inf for by_size in bounds.values() for bound in by_size.values()):
+        return -np.inf  # a size with no bound proven
+    best = np.full(required + 1, np.inf)
+    best[0] = 0.0
+    reached = np.arange(required + 1)
+    for by_size in bounds.values():
+        step = np.full(required + 1, np.inf)
+        for size, bound in by_size.items():
+            np.minimum.at(step, np.minimum(reached + size, required), best + bound)
+        best = step
+    return float(best[required])

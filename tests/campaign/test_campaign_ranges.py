@@ -63,6 +63,11 @@ def test_a_campaign_with_ranges_is_the_optimum(case):
              f"{sol.lower_bound_mps:.3f}); brute {[sorted(s) for s in sets]} {dv:.3f}")
     assert sol.status == RunStatus.OPTIMAL and sol.certified, found
     assert sol.lower_bound_mps <= dv + EPS_MPS, found
+    # the first bound (launches alone, their sizes adding up to the debris that must go)
+    # is a proof before any price
+    first = sol.history[0]
+    assert first["step"] == "launches alone and greedy"
+    assert 0.0 < first["lower_mps"] <= dv + EPS_MPS, (first, found)
     assert sol.total_dv_mps <= dv * (1 + GAP) + EPS_MPS, found
     assert sol.total_dv_mps >= dv - len(case["days"]) * GRID_TOL_MPS, found
     removed = [d for m in sol.missions for d in m.path]
@@ -86,3 +91,29 @@ def test_remove_all_needs_room_for_every_candidate():
 def test_remove_all_and_must_remove_together_are_refused():
     with pytest.raises(MissionError, match="remove_all removes every candidate"):
         Campaign.of([0.0], Mission(), n=2, must_remove=["S000"], remove_all=True)
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_the_sizes_bound_is_the_least_sum_over_sizes_that_remove_enough(seed):
+    """Against every choice of one size per launch: the least sum of the launches' bounds
+    for their sizes among those that add up to at least the debris required."""
+    import itertools
+
+    from sdc_cvx.campaign.min_dv import sizes_bound
+
+    rng = np.random.default_rng(seed)
+    launches = int(rng.integers(1, 5))
+    bounds = {k: {size: float(rng.uniform(0, 100)) + 10 * size
+                  for size in range(int(rng.integers(1, 4)), int(rng.integers(4, 7)))}
+              for k in range(launches)}  # fmt: skip
+    for k in range(launches):  # a size that no mission flies
+        if rng.random() < 0.3:
+            bounds[k][max(bounds[k])] = np.inf
+    required = int(rng.integers(0, 6 * launches))
+    best = min((sum(bounds[k][size] for k, size in enumerate(sizes))
+                for sizes in itertools.product(*(sorted(b) for b in bounds.values()))
+                if sum(sizes) >= required), default=np.inf)  # fmt: skip
+    assert sizes_bound(bounds, required) == pytest.approx(best)
+    assert sizes_bound(bounds, 0) == pytest.approx(sum(min(b.values()) for b in bounds.values()))
+    bounds[0][min(bounds[0])] = -np.inf  # no bound proven for one size: none at all
+    assert sizes_bound(bounds, required) == -np.inf
