@@ -11,10 +11,8 @@ transfer model of Part III):
    (:mod:`~sdc_cvx.planner.certified.network`) prices each arc by the exact lower bound
    of its leg over its box of dates, and its relaxation (the cheapest path of L legs
    that is none of the settled paths) is a lower bound of the mission.  Labels solve
-   it exactly (:func:`~sdc_cvx.network.path_bounds.cheapest_path`); where they are too
-   many, ng-route labels (:func:`~sdc_cvx.network.ng_routes.route_relaxation`, exact
-   when their cheapest route is a path); a MILP
-   (:mod:`~sdc_cvx.planner.certified.relaxation`) where both give up;
+   it exactly (:func:`~sdc_cvx.network.path_bounds.cheapest_path`); where too many,
+   ng-route labels (:mod:`~sdc_cvx.network.ng_routes`); a MILP where both give up;
 3. the relaxation's path is optimised globally as a fixed path
    (:func:`~sdc_cvx.planner.fixed_path.solve_path`): a plan that flies, i.e. an upper
    bound, and a certified lower bound of that path alone; it is then settled (excluded
