@@ -42,8 +42,10 @@ from .path_bounds import (
     CheapestPath,
     NetworkArcs,
     _trie,
+    cheapest_per_key,
     grouped,
     leaving,
+    traced_path,
     walk_bounds,
 )
 
@@ -192,10 +194,8 @@ def _cheapest_route(arcs: NetworkArcs, legs: int, node_debris, upper: float, wal
         after = trie[state[which], debris]
         keys = np.column_stack([head.astype(np.uint64), after.astype(np.uint64),
                                 (memory[which] & masks[debris]) | step])  # fmt: skip
-        order = np.lexsort((total,) + tuple(keys[:, c] for c in range(keys.shape[1] - 1, -1, -1)))
+        order, new = cheapest_per_key(keys, total)
         keys, total = keys[order], total[order]
-        new = np.ones(len(total), dtype=bool)
-        new[1:] = (keys[1:] != keys[:-1]).any(axis=1)
         if int(new.sum()) > max_labels:
             return None
         kept = order[new]
@@ -203,14 +203,4 @@ def _cheapest_route(arcs: NetworkArcs, legs: int, node_debris, upper: float, wal
                                      keys[new, 2:], total[new])  # fmt: skip
         parents.append(which[kept])
         made_by.append(arc[kept])
-    usable = np.flatnonzero(~leaf[state])
-    if not len(usable):
-        return CheapestPath(np.inf, (), np.empty(0, dtype=int))
-    label = int(usable[np.argmin(cost[usable])])
-    best, rows = float(cost[label]), []
-    for k in range(legs - 1, -1, -1):
-        rows.append(int(made_by[k][label]))
-        label = int(parents[k][label])
-    rows = np.array(rows[::-1], dtype=int)
-    debris = (int(arcs.debris_from[rows[0]]),) + tuple(int(d) for d in arcs.debris_to[rows])
-    return CheapestPath(best, debris, rows)
+    return traced_path(arcs, cost, np.flatnonzero(~leaf[state]), made_by, parents)

@@ -261,16 +261,40 @@ def _extend(labels: _Labels, groups, target, new_debris, cost, rest, upper,
     visited = np.sort(np.column_stack([labels.visited[which], debris]), axis=1)
     state = None if trie is None else trie[labels.state[which], debris]
     keys = np.column_stack([node, visited] if trie is None else [node, state, visited])
-    order = np.lexsort((total,) + tuple(keys[:, c] for c in range(keys.shape[1] - 1, -1, -1)))
+    order, new = cheapest_per_key(keys, total)
     keys, total = keys[order], total[order]
-    new = np.ones(len(total), dtype=bool)
-    new[1:] = (keys[1:] != keys[:-1]).any(axis=1)
     if int(new.sum()) > max_labels:
         return None
     if trie is None:
         return _Labels(keys[new, 0], keys[new, 1:], total[new])
     kept = order[new]
     return _Labels(keys[new, 0], keys[new, 2:], total[new], keys[new, 1], which[kept], arc[kept])
+
+
+def cheapest_per_key(keys, total):
+    """The order that sorts the rows of ``keys``, then ``total``; and, in that order, the
+    first row of each key (its cheapest), as a mask."""
+    order = np.lexsort((total,) + tuple(keys[:, c] for c in range(keys.shape[1] - 1, -1, -1)))
+    ordered = keys[order]
+    new = np.ones(len(order), dtype=bool)
+    new[1:] = (ordered[1:] != ordered[:-1]).any(axis=1)
+    return order, new
+
+
+def traced_path(arcs: NetworkArcs, cost, usable, made_by, parents) -> CheapestPath:
+    """The cheapest of the last labels ``usable`` (their ``cost``), as a path: its arcs
+    traced back through each length's arc and parent label (``made_by[k]``,
+    ``parents[k]`` for the labels of k + 1 arcs)."""
+    if not len(usable):
+        return CheapestPath(np.inf, (), np.empty(0, dtype=int))
+    label = int(usable[np.argmin(cost[usable])])
+    best, rows = float(cost[label]), []
+    for k in range(len(made_by) - 1, -1, -1):
+        rows.append(int(made_by[k][label]))
+        label = int(parents[k][label])
+    rows = np.array(rows[::-1], dtype=int)
+    debris = (int(arcs.debris_from[rows[0]]),) + tuple(int(d) for d in arcs.debris_to[rows])
+    return CheapestPath(best, debris, rows)
 
 
 def _top(labels: _Labels, n_nodes: int, count: int):
@@ -385,16 +409,8 @@ def cheapest_path(arcs: NetworkArcs, legs: int, node_debris, upper: float, walks
     for debris in required:
         has_all &= (last.visited == debris).any(axis=1)
     usable = np.flatnonzero(~leaf[last.state] & has_all)
-    if not len(usable):
-        return CheapestPath(np.inf, (), np.empty(0, dtype=int))
-    best = int(usable[np.argmin(last.cost[usable])])
-    rows, label = [], best
-    for k in range(legs, 0, -1):
-        rows.append(int(labels[k].arc[label]))
-        label = int(labels[k].parent[label])
-    rows = np.array(rows[::-1], dtype=int)
-    debris = (int(arcs.debris_from[rows[0]]),) + tuple(int(d) for d in arcs.debris_to[rows])
-    return CheapestPath(float(last.cost[best]), debris, rows)
+    return traced_path(arcs, last.cost, usable, [grown.arc for grown in labels[1:]],
+                       [grown.parent for grown in labels[1:]])  # fmt: skip
 
 
 _FREE, _ROOT = 0, 1
