@@ -23,6 +23,8 @@ References
    Operations Research 8(1), 101-111, 1960.
 .. [2] G. Desaulniers, J. Desrosiers and M. M. Solomon (eds.), *Column Generation*,
    Springer, 2005.
+.. [3] R. E. Marsten, W. W. Hogan and J. W. Blankenship, "The BOXSTEP method for
+   large-scale optimization", Operations Research 23(3), 389-405, 1975.
 """
 
 from __future__ import annotations
@@ -60,6 +62,9 @@ class MasterLP:
         LP value of each column.
     artificial : float
         Total weight of the artificial columns (0 when real columns cover every row).
+    boxed : float
+        Total weight of the box's columns (0: the box does not bind, the value is the
+        LP's).
     """
 
     value: float
@@ -67,6 +72,7 @@ class MasterLP:
     prices: np.ndarray
     weights: np.ndarray
     artificial: float
+    boxed: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -99,8 +105,15 @@ def _rows(columns, n_launches: int, n_debris: int):
 
 
 def solve_lp(columns, n_launches: int, n_debris: int, must_remove=(), *,
-             costs=None) -> MasterLP:  # fmt: skip
+             costs=None, box=None) -> MasterLP:  # fmt: skip
     """The master's LP relaxation over ``columns``, with artificial columns (see above).
+
+    With ``box = (centre, width)`` its prices stay within ``width`` of ``centre`` (the
+    boxstep method [3]_): each debris' row gets a column that covers it short at cost
+    ``width - centre_i`` (so ``y_i >= centre_i - width``) and one that covers it twice
+    over at cost ``centre_i + width`` (so ``y_i <= centre_i + width``); a packing row
+    already has ``y_i >= 0``.  Its value is then the most the pool's missions can prove
+    at prices in the box, not the LP's.
 
     Parameters
     ----------
@@ -111,6 +124,8 @@ def solve_lp(columns, n_launches: int, n_debris: int, must_remove=(), *,
     costs : array_like, optional
         Cost of each column (default their ΔV [m/s]; a max-value campaign's master
         minimises minus their value).
+    box : (ndarray, float), optional
+        Centre of the prices, shape (N,), and the box's half-width [m/s].
 
     Returns
     -------
@@ -131,15 +146,28 @@ def solve_lp(columns, n_launches: int, n_debris: int, must_remove=(), *,
     weights = cp.Variable(len(columns), nonneg=True)
     idle = cp.Variable(n_launches, nonneg=True)  # artificial: a launch without a mission
     missing = cp.Variable(len(required), nonneg=True)  # artificial: must_remove uncovered
+    packed_rows = debris[packed, :] @ weights
+    required_rows = debris[required, :] @ weights + missing
+    objective = costs @ weights + ARTIFICIAL_MPS * (cp.sum(idle) + cp.sum(missing))
+    box_columns = []
+    if box is not None:
+        centre, width = np.asarray(box[0], dtype=float), float(box[1])
+        over_packed = cp.Variable(len(packed), nonneg=True)  # y_i <= centre_i + width
+        over = cp.Variable(len(required), nonneg=True)
+        under = cp.Variable(len(required), nonneg=True)  # y_i >= centre_i - width
+        packed_rows = packed_rows - over_packed
+        required_rows = required_rows - over + under
+        objective = objective + (width + centre[packed]) @ over_packed + (
+            (width + centre[required]) @ over + (width - centre[required]) @ under)
+        box_columns = [over_packed, over, under]
     rows = {
         "launch": launch @ weights + idle == 1,
-        "packed": debris[packed, :] @ weights <= 1,
-        "required": debris[required, :] @ weights + missing == 1,
+        "packed": packed_rows <= 1,
+        "required": required_rows == 1,
     }
     constraints = [rows["launch"]] + [rows[name] for name, size in
                                       (("packed", len(packed)), ("required", len(required)))
                                       if size]  # fmt: skip
-    objective = costs @ weights + ARTIFICIAL_MPS * (cp.sum(idle) + cp.sum(missing))
     problem = cp.Problem(cp.Minimize(objective), constraints)
     report = solve_with_fallback(problem, chain_of(SolverOptions(backend=LP_BACKEND)))
     if report.status.value != "optimal":
@@ -161,11 +189,14 @@ def solve_lp(columns, n_launches: int, n_debris: int, must_remove=(), *,
     # a packing row's multiplier must be >= 0 for the Lagrangian bound to hold; a solver's
     # -1e-12 is rounding: any y >= 0 is a valid multiplier, so clip (the prices stay exact)
     prices[packed] = np.maximum(prices[packed], 0.0)
-    return MasterLP(value, sigma, prices, np.asarray(weights.value, dtype=float), artificial)
+    boxed = float(sum(np.sum(v.value) for v in box_columns if v.size))
+    return MasterLP(value, sigma, prices, np.asarray(weights.value, dtype=float), artificial,
+                    boxed)  # fmt: skip
 
 
 def solve_ip(columns, n_launches: int, n_debris: int, must_remove=(), *,
-             solver: SolverOptions, costs=None, at_least=None) -> MasterPlan | None:  # fmt: skip
+             solver: SolverOptions, costs=None, at_least=None,
+             time_limit_s: float | None = None) -> MasterPlan | None:  # fmt: skip
     """The integer master over ``columns``: the cheapest campaign they make, or None.
 
     Parameters
@@ -181,11 +212,15 @@ def solve_ip(columns, n_launches: int, n_debris: int, must_remove=(), *,
     at_least : (array_like, float), optional
         ``(weights, minimum)``: only campaigns whose columns' weights sum to at least
         ``minimum`` (a max-value campaign's value, held while its ΔV is minimised).
+    time_limit_s : float, optional
+        Stop the MILP there with its best campaign [s] (then a campaign the pool makes,
+        not necessarily its cheapest; default: solved to the end).
 
     Returns
     -------
     MasterPlan or None
-        None when no campaign can be made of the pool.
+        None when no campaign can be made of the pool (or none was found within
+        ``time_limit_s``).
 
     Raises
     ------
@@ -211,11 +246,11 @@ def solve_ip(columns, n_launches: int, n_debris: int, must_remove=(), *,
     if at_least is not None:
         constraints.append(np.asarray(at_least[0], dtype=float) @ pick >= at_least[1])
     problem = cp.Problem(cp.Minimize(costs @ pick), constraints)
-    exact = replace(solver, mip_gap=0.0, time_limit_s=None)
+    exact = replace(solver, mip_gap=0.0, time_limit_s=time_limit_s)
     report = solve_with_fallback(problem, chain_of(exact))
-    if report.status.value == "infeasible":
+    if report.status.value in ("infeasible", "no_solution"):
         return None
-    if report.status.value != "optimal":
+    if report.status.value not in ("optimal", "time_limit"):
         raise SolverFailure(f"the campaign master MILP failed: {report.message}")
     chosen = np.flatnonzero(pick.value > 0.5)
     chosen = tuple(int(c) for c in sorted(chosen, key=lambda c: columns[c].launch))

@@ -17,9 +17,12 @@ in named steps (:class:`CampaignSearch`, one method each):
    bound ``L(y) = sum_k B_k(y) - sum_i y_i`` is a lower bound of every campaign, where
    ``B_k(y)`` is the launch's proven lower bound of ``min over its missions of (ΔV +
    sum of the prices of their debris)`` (it equals the LP value plus the sum of the
-   launches' most negative reduced costs); the best is kept.  The integer master over
-   the pool is the plan.  The loop ends when no launch has a column of negative reduced
-   cost (the LP is solved), or plan and bound meet.
+   launches' most negative reduced costs); the best is kept.  Where debris must go, the
+   master's prices stay in a box around those of the best bound
+   (:mod:`~sdc_cvx.campaign.price_box`: its LP is degenerate and its own duals prove
+   nothing).  The integer master over the pool is the plan.  The loop ends when no
+   launch has a column of negative reduced cost (the LP is solved), or plan and bound
+   meet.
 4. *Closing*: if a gap is left, every mission whose reduced cost could be below
    ``plan - L(y)`` is enumerated (a campaign cheaper than the plan can only be made of
    such missions); the integer master over the pool is then the optimum, and the same
@@ -50,6 +53,7 @@ from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from .greedy import greedy_campaign, repair
 from .master import solve_ip, solve_lp
+from .price_box import PriceCentre, uniform_centre
 from .pricing import Column, Launch, Pricing, best_of_counts, infeasible_launch
 from .regroup import regroup
 from .result import GreedyCampaign
@@ -65,6 +69,12 @@ the pricing hard, as the first rounds after a dear campaign mended from greedy, 
 otherwise take all the time)."""
 ROUND_FLOOR_S = 10.0
 """Least time a pricing of a round has [s], whatever its share."""
+MASTER_SHARE = 0.02
+"""Share of the time left that a round's integer master may take (with a time limit):
+with a few thousand columns its MILP can take minutes (GTOC9-all: over 4 minutes at a
+quarter of the time left), and the closing step solves it to the end anyway."""
+MASTER_FLOOR_S = 5.0
+"""Least time of a round's integer master [s]."""
 EVERY_MISSION_MPS = 1e6
 """A ΔV no mission reaches [m/s] (a leg costs at most a few km/s): a window this wide
 around a launch's best mission enumerates every mission that flies from it."""
@@ -127,6 +137,7 @@ class CampaignSearch:
         self.backends: set[str] = set()
         self.at_once = 1  # pricings that run at once (solve_campaign sets it)
         self.regroups = True  # a mended first campaign is shared out again (not in regroup's)
+        self.centre = PriceCentre()  # the master's prices' box (launches_alone sets it)
 
     # ------------------------------------------------------------------ helpers
     def remaining(self) -> float | None:
@@ -170,14 +181,16 @@ class CampaignSearch:
         the schedules the pool knows of its launch's paths.  A task that waits for a
         worker has that much less time; with ``share`` (the launches alone: without each
         launch's plan there is no campaign) never less than its share of the time left;
-        with ``round_share``, never more than its share of that part of the time left
+        with ``round_share``, its share of that part of the time left from when it starts
         (a round of the column generation: its pricings stopped there still bring their
         columns and a proven bound)."""
         left = self.remaining()
         waves = -(-len(tasks) // max(self.at_once, 1))
         least = left / waves if share and left is not None else 0.0
         if round_share is not None and left is not None:
-            left = min(left, max(ROUND_FLOOR_S, round_share * left / waves))
+            # each pricing its share from when it starts, not from the round's start (the
+            # last wave of 50 pricings on 2 workers had waited past it and proved nothing)
+            left = least = min(max(ROUND_FLOOR_S, round_share * left / waves), left / waves)
         known: dict[int, dict] = {}
         for column in self.pool.columns:
             known.setdefault(column.launch, {})[column.nodes] = column.schedule
@@ -205,10 +218,11 @@ class CampaignSearch:
             bounds[result.launch] = min(bounds[result.launch], result.lower_mps)
         return bounds
 
-    def master_plan(self) -> None:
-        """The integer master over the pool: the plan, if it improves."""
+    def master_plan(self, time_limit_s: float | None = None) -> None:
+        """The integer master over the pool: the plan, if it improves (within
+        ``time_limit_s``: the best campaign its MILP found by then)."""
         plan = solve_ip(self.pool.columns, len(self.launches), len(self.catalog), self.must,
-                        solver=self.solver)  # fmt: skip
+                        solver=self.solver, time_limit_s=time_limit_s)  # fmt: skip
         if plan is not None:
             self.backends.add(plan.backend)
             if plan.value < self.upper - 1e-9:
@@ -260,6 +274,8 @@ class CampaignSearch:
         for variant, result in zip(self.variants, results, strict=True):
             sizes.setdefault(variant.index, {})[variant.mission.n] = result.lower_mps
         self.lower = max(self.lower, self.lagrangian, sizes_bound(sizes, len(self.must)))
+        self.centre = uniform_centre(sizes, np.asarray(self.must, dtype=int),
+                                     len(self.catalog))  # fmt: skip
         return alone
 
     def greedy(self, alone: list[Pricing]) -> GreedyCampaign:
@@ -279,12 +295,16 @@ class CampaignSearch:
         Returns the prices of the best bound and the launches' bounds under them (step 4
         closes from that bound: its window is plan - L(prices)).
         """
+        centre = self.centre
         last = None
+        if centre.value > self.lagrangian:  # the uniform prize: a bound before any round
+            self.lagrangian, last = centre.value, (centre.prices, centre.bounds)
         for round_ in range(1, MAX_ROUNDS + 1):
             if self.out_of_time():
                 self.notes.append(f"{self.limit_reached()} during column generation")
                 break
-            lp = solve_lp(self.pool.columns, len(self.launches), len(self.catalog), self.must)
+            lp = solve_lp(self.pool.columns, len(self.launches), len(self.catalog), self.must,
+                          box=centre.box())  # fmt: skip
             tasks = [(launch, dict(prices=lp.prices, tol_mps=self.tol,
                                    stop_above_mps=lp.sigma[launch.index] - self.tol,
                                    seeds=self.seeds(launch, lp.prices)))
@@ -296,21 +316,36 @@ class CampaignSearch:
                 # the closing step needs the prices of the bound it closes from
                 self.lagrangian, last = lagrangian, (lp.prices, bounds)
                 self.lower = max(self.lower, lagrangian)
+            moved = centre.update(lp.prices, bounds, lagrangian, lp.value)
             new = sum(self.pool.add(r.columns) for r in results)
-            self.master_plan()
-            self.record(f"round {round_} (LP {lp.value:.2f} m/s, {new} new columns)", lp.value)
-            solved = all(bounds >= lp.sigma - self.tol - 1e-9)
-            if solved and lp.artificial > 1e-6:
+            left = self.remaining()  # a round's plan is a heuristic: its share of the time
+            self.master_plan(None if left is None else max(MASTER_FLOOR_S, MASTER_SHARE * left))
+            boxed = (f", prices within {centre.width:.1f} m/s of the best bound's"
+                     f"{' (moved)' if moved else ''}") if lp.boxed > 1e-9 or moved else ""
+            self.record(f"round {round_} ({'box ' if lp.boxed > 1e-9 else ''}LP "
+                        f"{lp.value:.2f} m/s{boxed}, bound there "
+                        f"{shown_bound(lagrangian) or 0:.2f} m/s, {new} new columns)",
+                        lp.value)  # fmt: skip
+            # solved: the pricing proves the LP's value (at the LP's own prices, every
+            # launch's bound reaches its dual); the box LP's value is less where it binds
+            slack = self.tol * len(self.launches) + 1e-9
+            solved, master = lagrangian >= lp.value - slack, lp
+            if solved and lp.boxed > 1e-9:
+                master = solve_lp(self.pool.columns, len(self.launches), len(self.catalog),
+                                  self.must)  # fmt: skip
+                solved = lagrangian >= master.value - slack
+            if solved and master.artificial > 1e-6:
                 # the LP needs an artificial column at its optimum: no campaign is likely,
                 # but a big-M cost proves it only where no price reaches it, so the closing
                 # step proves it (every mission that flies, then the exact master)
                 self.say("  the master LP needs its artificial columns: enumerating every "
                          "mission that flies to prove whether any campaign does")  # fmt: skip
                 break
-            if self.within() or solved or self.out_of_time() or new == 0:
+            stalled = new == 0 and (lp.boxed <= 1e-9 or not moved)  # moved: a new box
+            if self.within() or solved or self.out_of_time() or stalled:
                 if self.out_of_time() and not self.within():
                     self.notes.append(f"{self.limit_reached()} during column generation")
-                elif new == 0 and not solved and not self.within():
+                elif stalled and not solved and not self.within():
                     self.notes.append("column generation stalled: no new column")
                 break
         else:

@@ -234,3 +234,36 @@ def test_a_pricing_that_waited_for_a_worker_counts_the_wait_against_its_limit(ca
     assert fresh.status == "optimal"
     waited = price(launch, time_limit_s=30.0, sent_at=time.time() - 31.0)
     assert waited.status == "no_plan" and not waited.columns
+
+
+def test_each_pricing_of_a_round_has_its_share_from_when_it_starts(catalog):
+    """A round of column generation: each pricing's limit is its share of a quarter of the
+    time left, and a pricing that waited for a worker still has all of it (its share was
+    counted from the round's start: the last of 50 pricings on two workers had waited
+    past it and proved nothing, GTOC9-all).  Its floor is 10 s, within the time left."""
+    from sdc_cvx.campaign.min_dv import ROUND_SHARE, CampaignSearch
+    from sdc_cvx.milp.types import SolverOptions
+
+    handed: list[dict] = []
+
+    def run(tasks):
+        handed.extend(kwargs for _, kwargs in tasks)
+        return []
+
+    campaign = Campaign.of([0.0, 100.0, 200.0, 300.0], Mission(n=2))
+    search = CampaignSearch(catalog, campaign, SolverOptions(), 1e-3,
+                            time.perf_counter() + 800.0, lambda line: None, run)  # fmt: skip
+    search.at_once = 2  # four launches: two waves
+    search.price_all([(launch, {}) for launch in search.variants], round_share=ROUND_SHARE)
+    assert len(handed) == 4
+    for kwargs in handed:  # 800 s left, two waves: a quarter of 400 s each
+        assert kwargs["time_limit_s"] == pytest.approx(ROUND_SHARE * 400.0, rel=1e-3)
+        assert kwargs["least_s"] == kwargs["time_limit_s"]
+    handed.clear()
+    search.deadline = time.perf_counter() + 30.0  # the floor, but never past the time left
+    search.price_all([(launch, {}) for launch in search.variants], round_share=ROUND_SHARE)
+    assert all(k["least_s"] == pytest.approx(10.0, rel=1e-3) for k in handed)
+    handed.clear()
+    search.deadline = time.perf_counter() + 12.0
+    search.price_all([(launch, {}) for launch in search.variants], round_share=ROUND_SHARE)
+    assert all(k["least_s"] == pytest.approx(6.0, rel=1e-2) for k in handed)
