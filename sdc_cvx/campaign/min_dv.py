@@ -303,6 +303,7 @@ class CampaignSearch:
             if self.out_of_time():
                 self.notes.append(f"{self.limit_reached()} during column generation")
                 break
+            width = centre.width
             lp = solve_lp(self.pool.columns, len(self.launches), len(self.catalog), self.must,
                           box=centre.box())  # fmt: skip
             tasks = [(launch, dict(prices=lp.prices, tol_mps=self.tol,
@@ -320,12 +321,10 @@ class CampaignSearch:
             new = sum(self.pool.add(r.columns) for r in results)
             left = self.remaining()  # a round's plan is a heuristic: its share of the time
             self.master_plan(None if left is None else max(MASTER_FLOOR_S, MASTER_SHARE * left))
-            boxed = (f", prices within {centre.width:.1f} m/s of the best bound's"
-                     f"{' (moved)' if moved else ''}") if lp.boxed > 1e-9 or moved else ""
-            self.record(f"round {round_} ({'box ' if lp.boxed > 1e-9 else ''}LP "
-                        f"{lp.value:.2f} m/s{boxed}, bound there "
-                        f"{shown_bound(lagrangian) or 0:.2f} m/s, {new} new columns)",
-                        lp.value)  # fmt: skip
+            box = f" in a box of ±{width:.1f} m/s" if lp.boxed > 1e-9 else ""
+            self.record(f"round {round_} (LP {lp.value:.2f} m/s{box}, bound there "
+                        f"{shown_bound(lagrangian) or 0:.2f} m/s{', the new centre' * moved}, "
+                        f"{new} new columns)", lp.value)  # fmt: skip
             # solved: the pricing proves the LP's value (at the LP's own prices, every
             # launch's bound reaches its dual); the box LP's value is less where it binds
             slack = self.tol * len(self.launches) + 1e-9
