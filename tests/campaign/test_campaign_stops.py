@@ -13,6 +13,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pytest
 
 from sdc_cvx import Mission
@@ -267,3 +268,22 @@ def test_each_pricing_of_a_round_has_its_share_from_when_it_starts(catalog):
     search.deadline = time.perf_counter() + 12.0
     search.price_all([(launch, {}) for launch in search.variants], round_share=ROUND_SHARE)
     assert all(k["least_s"] == pytest.approx(6.0, rel=1e-2) for k in handed)
+
+
+def test_a_gap_too_wide_to_enumerate_is_said_and_not_closed(catalog):
+    """The closing step enumerates every mission within the gap of its launch's best; a gap
+    of a quarter of the plan or more would be about every mission (GTOC9-all: 2 GB a
+    worker, past the time limit), so it is not started, and the notes say why."""
+    from sdc_cvx.campaign.min_dv import CLOSING_SHARE, CampaignSearch
+    from sdc_cvx.milp.types import SolverOptions
+
+    handed: list = []
+    campaign = Campaign.of([0.0, 100.0], Mission(n=2))
+    search = CampaignSearch(catalog, campaign, SolverOptions(), 1e-3,
+                            time.perf_counter() + 60, lambda line: None,
+                            lambda tasks: handed.extend(tasks) or [])  # fmt: skip
+    search.plan, search.upper = ["a campaign"], 100.0
+    search.lagrangian = 100.0 * (1 - CLOSING_SHARE) - 1.0
+    search.close(np.zeros(len(catalog)), np.zeros(2))
+    assert handed == [] and "the closing step was not run" in search.notes[-1]
+    assert "(26% of the plan)" in search.notes[-1]
