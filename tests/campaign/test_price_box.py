@@ -10,17 +10,12 @@ import numpy as np
 import pytest
 
 from sdc_cvx.campaign.price_box import FIRST_WIDTH, SERIOUS, PriceCentre, uniform_centre
+from tests.campaign.test_campaign_ranges import random_size_bounds
 
 
 def random_bounds(seed: int):
     rng = np.random.default_rng(seed)
-    launches = int(rng.integers(1, 5))
-    bounds = {k: {size: float(rng.uniform(0, 100)) + 10 * size
-                  for size in range(int(rng.integers(1, 4)), int(rng.integers(4, 7)))}
-              for k in range(launches)}  # fmt: skip
-    for k in range(launches):  # a size that no mission flies
-        if rng.random() < 0.3 and len(bounds[k]) > 1:
-            bounds[k][max(bounds[k])] = np.inf
+    bounds = random_size_bounds(rng, every_launch_flies=True)
     lowest = sum(min(b) for b in bounds.values())
     highest = sum(max(n for n, v in b.items() if v < np.inf) for b in bounds.values())
     return bounds, int(rng.integers(lowest, highest + 1))
