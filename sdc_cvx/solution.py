@@ -57,6 +57,8 @@ OPTIMAL_GAP_REL = 1e-3
 :data:`OPTIMAL_GAP_MPS` is optimal whatever the plan's size."""
 OPTIMAL_GAP_MPS = 0.01
 """Absolute gap always called ``optimal`` [m/s] (the certified search's path tolerance)."""
+PLANNED_COLUMNS = ("a_km", "e", "inc_deg", "raan_deg", "raan_rate_deg_per_day")
+"""The catalog columns of each debris that ``solution.json`` keeps as planned (``debris``)."""
 
 _SOLVED = frozenset(
     {
@@ -234,6 +236,7 @@ class Solution:
         ISO-8601 UTC string such as ``"2020-05-24T00:00:00+00:00"``); the legs'
         ``departure_day`` counts from it.  It is None (``null``) for a catalog without
         epochs, such as the paper's Table 5, or a solution without its catalog.
+        ``debris`` is the path's debris as planned (:meth:`planned_debris`).
         """
         start = None if self.catalog is None else self.catalog.start
         return {
@@ -256,6 +259,7 @@ class Solution:
             "initial_legs": [leg.to_dict() for leg in self.initial_legs],
             "iterations": [record.to_dict() for record in self.iterations],
             "start": None if start is None else start.isoformat(),
+            "debris": self.planned_debris(),
             "mission": self.mission.to_dict(),
             "transfer": self.mission.transfer_model().describe(),
             "vehicle": self.vehicle,
@@ -264,6 +268,18 @@ class Solution:
             "timings": self.timings,
             "notes": list(self.notes),
         }
+
+    def planned_debris(self) -> list[dict]:
+        """The path's debris as the plan had them at day 0 (``start``): ``id``, ``a_km``,
+        ``e``, ``inc_deg``, ``raan_deg`` and ``raan_rate_deg_per_day`` [km, -, deg,
+        deg/day]; ``fly`` compares them with the catalog it reads (a file refreshed since
+        the run is said).  Empty without the catalog."""
+        if self.catalog is None:
+            return []
+        frame = self.catalog.frame.set_index(self.catalog.frame["id"].astype(str))
+        return [{"id": name, **{column: float(frame.at[name, column])
+                                for column in PLANNED_COLUMNS}}
+                for name in self.path if name in frame.index]  # fmt: skip
 
     def to_json(self, indent=2) -> str:
         return json.dumps(self.to_dict(), indent=indent, allow_nan=False)

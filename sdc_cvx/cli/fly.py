@@ -2,8 +2,10 @@
 
 Writes ``RUN_DIR/flight/`` (:mod:`sdc_cvx.flight.result`) and prints one line per leg
 and a summary: plan ΔV, flown ΔV, worst miss.  Exit 2 when the plan cannot be flown as
-asked (no phase for a debris, not a run folder, an injection orbit), 4 when the folder
-cannot be written, 130 on Ctrl-C (an earlier ``flight/`` is kept whole).
+asked (no phase for a debris, not a run folder, an injection orbit), 3 when a flight is
+not flown as planned (incomplete, late or missed: its ``flight/`` is written and says
+so), 4 when the folder cannot be written, 130 on Ctrl-C (an earlier ``flight/`` is kept
+whole).
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from pathlib import Path
 
 import click
 
-from .exits import INTERRUPTED, SOLVER_FAILED, fail
+from .exits import INFEASIBLE, INTERRUPTED, SOLVER_FAILED, fail
 
 FORCE_MODELS = ("j2", "j2-j4", "j2-j4-drag")
 
@@ -44,6 +46,7 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
         if not quiet:
             click.echo(line, err=True)
 
+    unflown = []  # (folder, status) of each flight not flown as planned
     try:
         with _flying(folder):
             plans = run_folder_plans(folder)
@@ -52,6 +55,8 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
                     fail(problem)
             for sub, plan in plans:
                 progress(f"flying {sub}: {' -> '.join(plan.catalog.frame['id'])}")
+                for note in plan.notes:  # a catalog changed since the run
+                    click.echo(f"warning: {note}", err=True)
                 flight = fly(plan, force=force_model, progress=progress)
                 flight.save(sub)
                 click.echo(flight.summary(), err=not stdout)
@@ -59,6 +64,7 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
                 if (said := flight.warning()) is not None:
                     click.echo(f"warning: {said} (flight.json: status {flight.status})",
                                err=True)  # fmt: skip
+                    unflown.append((sub, flight.status))
     except SdcError as err:
         fail(str(err))
     except KeyboardInterrupt:
@@ -68,6 +74,10 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
         fail(f"interrupted while flying: {kept}", INTERRUPTED)
     except OSError as err:
         fail(f"cannot write {folder}/flight: {err.strerror or err}", SOLVER_FAILED)
+    if unflown:  # written, but never called flown: a script must not carry on
+        which = ", ".join(f"{sub} {status}" for sub, status in unflown)
+        fail(f"{len(unflown)} of {len(plans)} plan(s) not flown as planned ({which}); "
+             "see the notes in flight.json", INFEASIBLE)  # fmt: skip
 
 
 @contextlib.contextmanager

@@ -65,6 +65,8 @@ class FlightPlan:
         The plan's mission duration [days].
     accel_mps2 : float or None
         A low-thrust plan's thrust acceleration [m/s^2]; None for an impulsive plan.
+    notes : tuple of str
+        What the flight must say of the plan (a catalog changed since the run).
     """
 
     legs: tuple[PlannedLeg, ...]
@@ -74,6 +76,7 @@ class FlightPlan:
     plan_dv_mps: float
     plan_end_day: float
     accel_mps2: float | None = None
+    notes: tuple[str, ...] = ()
 
     @classmethod
     def from_solution(cls, solution) -> FlightPlan:
@@ -154,10 +157,17 @@ class FlightPlan:
                                 leg["side"], leg["dv_mps"], leg["laps"])
                      for leg in plan["legs"])  # fmt: skip
         try:
-            return cls._build(legs, catalog, plan["tmax_days"], plan["drift_altitude_km"],
-                              plan["total_duration_days"], rates=rates, accel=accel)  # fmt: skip
+            built = cls._build(legs, catalog, plan["tmax_days"], plan["drift_altitude_km"],
+                               plan["total_duration_days"], rates=rates, accel=accel)  # fmt: skip
         except CatalogError as err:  # SGP4 cannot fly a debris over the window of its rate
             raise FlightError(_naming(scenario_file, err)) from None
+        changes = changed_since_plan(built.catalog, plan["debris"])
+        if not changes:
+            return built
+        return dataclasses.replace(built, notes=(
+            f"{catalog.source}: the catalog changed since the run ({listing(changes)}, at "
+            "day 0): this flight meets the debris as the file has them now, not those the "
+            f"plan was made for; plan again (run {scenario_file}) for a plan of these",))
 
     @classmethod
     def _build(cls, legs, catalog: Catalog, tmax_days, bounds, end_day, *, rates=None,
@@ -189,6 +199,32 @@ class FlightPlan:
     def start(self) -> pd.Timestamp:
         """Day 0 of the plan (UTC)."""
         return self.catalog.start
+
+
+CHANGE_TOLERANCE = {"a_km": 1e-6, "e": 1e-9, "inc_deg": 1e-7, "raan_deg": 1e-6,
+                    "raan_rate_deg_per_day": 1e-9}
+"""Differences of a debris' elements (``solution.json``'s ``debris``) that are rounding,
+not a changed catalog [km, -, deg, deg, deg/day]: the same file gives the same floats."""
+
+
+def changed_since_plan(catalog: Catalog, planned: list[dict]) -> list[str]:
+    """What differs between the debris as the run planned them (``solution.json``'s
+    ``debris``: at day 0) and in ``catalog`` now, one phrase per element that moved."""
+    frame = catalog.frame.set_index(catalog.frame["id"].astype(str))
+    out = []
+    for entry in planned:
+        name = str(entry.get("id"))
+        for column, tolerance in CHANGE_TOLERANCE.items():
+            then = entry.get(column)
+            if name not in frame.index or not isinstance(then, int | float):
+                continue
+            now = float(frame.at[name, column])
+            moved = now - float(then)
+            if column == "raan_deg":
+                moved = (moved + 180.0) % 360.0 - 180.0
+            if abs(moved) > tolerance:
+                out.append(f"{name} {column} {then:.6g} -> {now:.6g}")
+    return out
 
 
 def unflyable(catalog: Catalog, mission) -> str | None:

@@ -137,7 +137,7 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
     track = Track(t0, r0[0], v0[0])
     maneuvers, meetings = [], []
     delay = 0.0  # how much later than the plan the vehicle is ready [s]
-    notes = []
+    notes = list(plan.notes)  # first: the last note says why a flight is incomplete
     for k, leg in enumerate(plan.legs):
         t_ready = max(leg.departure_day * SECONDS_PER_DAY + delay, track.t)
         pole = _pole(plan, t_ready + 0.5 * leg.duration_days * SECONDS_PER_DAY)

@@ -184,9 +184,10 @@ class Flight:
             limit += f"; INCOMPLETE: {self.notes[-1]}"
             planned += (f" ({base:.2f} m/s over the {len(self.rendezvous)} of "
                         f"{len(self.plan.legs)} legs flown)")  # fmt: skip
+        met = (f"worst miss {self.worst_miss_km:.2f} km; ends day {self.end_day:.2f}"
+               if self.rendezvous else "no debris met")  # fmt: skip
         return (f"flight    {planned}, flown {self.flown_dv_mps:.2f} m/s "
-                f"({extra:+.2f} %), worst miss {self.worst_miss_km:.2f} km; ends day "
-                f"{self.end_day:.2f}, {limit} ({self.force.describe()['name']}, "
+                f"({extra:+.2f} %), {met}, {limit} ({self.force.describe()['name']}, "
                 f"{self.rates} rates, {self.seconds:.0f} s)")  # fmt: skip
 
     # -- tables -----------------------------------------------------------------------

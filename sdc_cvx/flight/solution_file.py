@@ -31,7 +31,8 @@ def checked_solution(data, path: Path) -> dict:
     -------
     dict
         ``legs`` (a list of dicts of typed fields), ``tmax_days``, ``drift_altitude_km``,
-        ``total_duration_days``, ``start`` (``pd.Timestamp`` or None), ``mission``.
+        ``total_duration_days``, ``start`` (``pd.Timestamp`` or None), ``mission``,
+        ``debris`` (the path's debris as planned; empty in an earlier version's file).
 
     Raises
     ------
@@ -102,8 +103,12 @@ def checked_solution(data, path: Path) -> dict:
     flown = [checked[0]["from"]] + [leg["to"] for leg in checked] if checked else []
     if path_ids is not None and [str(p) for p in path_ids] != flown:
         fail("path", f"{path_ids!r} is not the legs' path {flown!r}")
+    planned = data.get("debris", [])  # absent from the files of earlier versions
+    if not (isinstance(planned, list) and all(isinstance(entry, dict) for entry in planned)):
+        fail("debris", f"expected a list of objects (the debris as planned), got {planned!r}")
     return {"legs": checked, "tmax_days": tmax, "drift_altitude_km": tuple(map(float, band)),
-            "total_duration_days": total, "start": start, "mission": mission}
+            "total_duration_days": total, "start": start, "mission": mission,
+            "debris": planned}
 
 
 def _number(value, rule) -> float | None:

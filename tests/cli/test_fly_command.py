@@ -372,6 +372,55 @@ def test_a_campaign_folder_is_flown_mission_by_mission(tmp_path):
     assert starts[1] - starts[0] == pd.Timedelta(days=90)
 
 
+def with_raan_moved(text: str, norad: str, degrees: float) -> str:
+    """A TLE file's ``text`` with one object's RAAN (line 2, columns 18-25) moved by
+    ``degrees`` and its checksum made again (the TLE rule, written out here)."""
+    def checksum(line: str) -> str:
+        return str(sum(int(c) if c.isdigit() else c == "-" for c in line[:68]) % 10)
+
+    out = []
+    for line in text.splitlines():
+        if line.startswith(f"2 {norad:>5} "):
+            line = line[:17] + f"{(float(line[17:25]) + degrees) % 360.0:8.4f}" + line[25:68]
+            line += checksum(line)
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+@pytest.mark.slow
+@pytest.mark.requires_shared_data(TLE)
+def test_a_catalog_changed_since_the_run_is_said_and_its_failed_flight_exits_3(tmp_path):
+    """Found as a new user: a TLE file refreshed under the same name after the run was
+    flown as if it were the plan's (``worst miss nan km``, ``INCOMPLETE``) with exit 0.
+    Now its change is named, and a flight not flown as planned exits 3, its files
+    written (a script must not carry on)."""
+    catalog = tmp_path / "rocket_bodies.tle"
+    catalog.write_text(shared_file(TLE).read_text(encoding="utf-8"), encoding="utf-8")
+    folder = tmp_path / "run"
+    run = cli_process("run", "--catalog", str(catalog), "--n", "3", "--tmax-days", "40",
+                      "--fly", "--out", str(folder), "--quiet")  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert "changed since the run" not in run.stderr  # the same file: nothing said
+    first = json.loads((folder / "solution.json").read_text(encoding="utf-8"))["path"][0]
+    planned = json.loads((folder / "solution.json").read_text(encoding="utf-8"))["debris"]
+    assert [entry["id"] for entry in planned] == json.loads(
+        (folder / "solution.json").read_text(encoding="utf-8"))["path"]
+    catalog.write_text(with_raan_moved(catalog.read_text(encoding="utf-8"), first, 60.0),
+                       encoding="utf-8")  # fmt: skip
+    result = cli_process("fly", str(folder), "--quiet")
+    assert result.returncode == 3, result.stderr
+    assert "Traceback" not in result.stderr
+    warned = [line for line in result.stderr.splitlines() if "changed since the run" in line]
+    assert len(warned) == 1 and f"{first} raan_deg" in warned[0], result.stderr
+    assert str(catalog) in warned[0]
+    flight = json.loads((folder / "flight" / "flight.json").read_text(encoding="utf-8"))
+    assert flight["status"] != "flown"
+    assert any("changed since the run" in note for note in flight["notes"])
+    assert result.stderr.splitlines()[-1].startswith("error: 1 of 1 plan(s) not flown")
+    assert "no debris met" in result.stdout or "worst miss" in result.stdout
+    assert "nan" not in result.stdout
+
+
 @pytest.mark.slow
 def test_run_fly_does_not_fly_a_plan_the_tank_cannot_hold(tmp_path):
     """An over_capacity plan is never called flyable: found as a user, ``run --fly``
