@@ -260,13 +260,19 @@ class CampaignSearch:
         alone = [best_of_counts([r for r in results if r.launch == k])
                  for k in range(len(self.launches))]  # fmt: skip
         for launch, result in zip(self.launches, alone, strict=True):
-            self.pool.add(result.columns)
             if result.status == "infeasible":
                 raise MissionInfeasible(infeasible_launch(launch, self.campaign))
-            if result.status == "no_plan":
-                raise SolverFailure(f"{launch.label()}: " + ("interrupted before any plan" if
-                    self.stop() else "the time limit stopped the search before any plan; "
-                    "allow more time"))  # fmt: skip
+        unplanned = [launch.label() for launch, result in zip(self.launches, alone, strict=True)
+                     if result.status == "no_plan"]  # fmt: skip
+        if unplanned:  # a campaign needs a mission from every launch
+            spent = time.perf_counter() - self.clock
+            raise SolverFailure(
+                f"{' and '.join(unplanned)}: " + ("interrupted before any plan" if self.stop()
+                else f"the time limit stopped the search before any plan ({spent:.0f} s "
+                "spent on the launches alone, each its share), so there is no campaign to "
+                "return; allow more time"))  # fmt: skip
+        for launch, result in zip(self.launches, alone, strict=True):
+            self.pool.add(result.columns)
             best = result.columns[0] if result.columns else None
             self.say(f"  {launch.label()} alone: {result.upper_mps:.2f} m/s "
                      f"({self.path_text(best)}; {result.seconds:.1f} s)")  # fmt: skip

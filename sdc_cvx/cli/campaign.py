@@ -50,7 +50,8 @@ from .reading import (
     "time_limit_s",
     type=float,
     default=None,
-    help="Time limit of the whole search [s]; the best campaign is then returned with its gap.",
+    help="Time limit of the whole search [s]; the best campaign is then returned with its "
+         "gap (exit 4 if the limit came before every launch had a mission).",
 )
 @click.option(
     "--gap", type=float, default=None, help="Relative gap of a certified answer [0.001 = 0.1 %]."

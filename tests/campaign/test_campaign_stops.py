@@ -287,3 +287,30 @@ def test_a_gap_too_wide_to_enumerate_is_said_and_not_closed(catalog):
     search.close(np.zeros(len(catalog)), np.zeros(2))
     assert handed == [] and "the closing step was not run" in search.notes[-1]
     assert "(26% of the plan)" in search.notes[-1]
+
+
+def test_launches_left_without_a_plan_by_the_time_limit_are_named_together(catalog):
+    """Found as a new user (``--time-limit 15`` on a loaded machine): one launch's search
+    had found no mission in its share, and the error named that launch alone, as if it
+    were the campaign's only problem.  Every launch without a plan is named, with the
+    time spent, and nothing is claimed infeasible."""
+    from sdc_cvx.campaign.min_dv import CampaignSearch
+    from sdc_cvx.campaign.pricing import Column, Pricing
+    from sdc_cvx.errors import SolverFailure
+    from sdc_cvx.milp.types import SolverOptions
+
+    def run(tasks):  # launches 1 and 3 found nothing in their share of the time
+        return [Pricing(launch.index, (), -np.inf, np.inf, "no_plan", 1.0, (), False)
+                if launch.index in (0, 2) else
+                Pricing(launch.index, (Column(launch.index, (0, 1), (0, 1), 12.0, 10.0, None),),
+                        10.0, 12.0, "feasible", 1.0, (), False)
+                for launch, _ in tasks]  # fmt: skip
+
+    campaign = Campaign.of([0.0, 100.0, 200.0], Mission(n=2))
+    search = CampaignSearch(catalog, campaign, SolverOptions(), 1e-3,
+                            time.perf_counter() + 30, lambda line: None, run)  # fmt: skip
+    with pytest.raises(SolverFailure) as raised:
+        search.launches_alone()
+    said = str(raised.value)
+    assert said.startswith("mission 1 (launch day 0) and mission 3 (launch day 200): ")
+    assert "mission 2" not in said and "allow more time" in said
