@@ -29,6 +29,7 @@ from .exits import (
     fail,
     interrupted_exit,
 )
+from .fly import warn_replaced_flights
 from .options import out_option, parallel_options, raan_rates_option
 from .progress import RunProgress, interruptible, open_progress_log
 from .reading import (
@@ -105,6 +106,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         problem = campaign_folder_problem(out_dir)
         if problem is not None:
             fail(f"--out: {problem}")
+        warn_replaced_flights(out_dir)
     elif (problem := new_folder_problem()) is not None:
         fail(problem)
     campaign = scenario.campaign

@@ -80,6 +80,19 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
              "see the notes in flight.json", INFEASIBLE)  # fmt: skip
 
 
+def warn_replaced_flights(out_dir) -> None:
+    """Say, before the solve, that ``--out`` is an earlier folder that was flown: it is
+    replaced whole, its ``flight/`` folders too (they flew its plan, not the next one)."""
+    from ..errors import listing
+    from ..report.out_folder import replaced_flights
+
+    if flights := replaced_flights(out_dir):
+        click.echo(f"warning: --out {out_dir} was flown: replacing it removes "
+                   f"{listing(f'{name}/' for name in flights)} (flights of its earlier "
+                   f"plan); python -m sdc_cvx fly {out_dir} flies the new one",
+                   err=True)  # fmt: skip
+
+
 @contextlib.contextmanager
 def _flying(folder: Path):
     """An exclusive ``flock`` on ``folder`` while it is flown; exit 2 if another ``fly``

@@ -24,7 +24,7 @@ from .exits import (
     exit_code,
     fail,
 )
-from .fly import FORCE_MODELS, fly_folder
+from .fly import FORCE_MODELS, fly_folder, warn_replaced_flights
 from .options import (
     catalog_options,
     raan_rates_option,
@@ -172,6 +172,7 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
         problem = out_folder_problem(Path(out_dir))
         if problem is not None:
             fail(f"--out: {problem}")
+        warn_replaced_flights(out_dir)
     elif (problem := new_folder_problem()) is not None:
         fail(problem)
     catalog = read_catalog(scenario, on_invalid="set aside")  # the filters act first

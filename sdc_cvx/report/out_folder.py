@@ -83,6 +83,16 @@ def is_ours(path: Path, files) -> bool:
                     for inner in path.iterdir()))  # fmt: skip
 
 
+def replaced_flights(folder: Path | str) -> list[str]:
+    """The ``flight/`` folders of an earlier run or campaign folder (paths relative to
+    it) that replacing it removes: they flew the earlier plan, not the next one."""
+    folder = real_folder(folder)
+    if not folder.is_dir():
+        return []
+    found = [folder / FLIGHT_FOLDER] + sorted(folder.glob(f"*/{FLIGHT_FOLDER}"))
+    return [str(path.relative_to(folder)) for path in found if path.is_dir()]
+
+
 def out_folder_problem(folder: Path | str, markers=RUN_FOLDER_MARKERS,
                        files=RUN_FOLDER_FILES, kind: str = "run folder") -> str | None:  # fmt: skip
     """Why ``folder`` cannot take a run folder, or None (checked before any solve).

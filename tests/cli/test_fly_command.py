@@ -263,6 +263,13 @@ def test_run_fly_writes_the_flight_folder(tmp_path):
     mine.unlink()
     assert cli_process("fly", str(folder), "--quiet").returncode == 0
     assert {p.name for p in (folder / "flight").iterdir()} == FLIGHT_FILES
+    # planned again into it: the folder is replaced whole, and its flight, of the earlier
+    # plan, is said to go before the solve (found as a new user: it went without a word)
+    again = cli_process("run", str(sso_scenario(tmp_path)), "--out", str(folder), "--quiet")
+    assert again.returncode == 0, again.stderr
+    warned = [line for line in again.stderr.splitlines() if line.startswith("warning: ")]
+    assert len(warned) == 1 and "removes flight/" in warned[0], again.stderr
+    assert not (folder / "flight").exists()
 
 
 @pytest.mark.slow
