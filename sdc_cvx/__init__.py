@@ -40,6 +40,7 @@ _EXPORTS = {
     "Vehicle": "sdc_cvx.inputs.vehicle",
     "plot_sweep": "sdc_cvx.study.figure",
     "preoptimize": "sdc_cvx.network.edges",
+    "read_catalog": "sdc_cvx.inputs.formats",
     "solve": "sdc_cvx.planner.api",
     "solve_campaign": "sdc_cvx.campaign.search",
     "sweep": "sdc_cvx.study.runner",
@@ -62,6 +63,7 @@ __all__ = [
     "Vehicle",
     "plot_sweep",
     "preoptimize",
+    "read_catalog",
     "solve",
     "solve_campaign",
     "sweep",
@@ -74,6 +76,7 @@ if TYPE_CHECKING:
     from .errors import CatalogError, MissionError, MissionInfeasible, SolverFailure
     from .inputs.campaign import Campaign
     from .inputs.catalog import Catalog
+    from .inputs.formats import read_catalog
     from .inputs.mission import Mission
     from .inputs.vehicle import Vehicle
     from .milp.types import SolverOptions

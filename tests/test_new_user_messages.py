@@ -148,3 +148,29 @@ def test_a_position_on_the_orbit_that_is_not_a_number_is_named(tmp_path):
                     "2,7180,0.001,98.6,12,\n3,7190,0.001,98.6,14,45\n")  # fmt: skip
     with pytest.raises(CatalogError, match="row 1.*field 'arglat_deg': expected a number"):
         Catalog.from_csv(path)
+
+
+# the first two element sets of the SSO rocket bodies (2020), as that file has them
+TWO_TLES = """\
+0 THOR AGENA D R/B
+1   733U 64002A   20145.30230088 +.00000007 +00000-0 +20152-4 0  9992
+2   733 099.0143 035.9085 0032950 303.3378 056.4651 14.32394256935785
+0 THOR AGENA D R/B
+1   815U 64031C   20147.19804992 -.00000013  00000-0  17013-4 0  9995
+2   815  99.8646 150.6351 0012488  52.4516 307.7793 14.27329406905632
+"""
+
+
+def test_a_tle_file_is_read_from_python_by_the_reader_readme_names(tmp_path):
+    """Found as a new user: README showed ``Catalog.from_csv`` only, and the reader of TLE,
+    OMM and GTOC9 files was not at the top level.  ``sdc_cvx.read_catalog`` is, and
+    ``solve`` given a path names it."""
+    import sdc_cvx
+
+    path = tmp_path / "two.tle"
+    path.write_text(TWO_TLES, encoding="utf-8")
+    catalog = sdc_cvx.read_catalog(path)
+    assert list(catalog.frame["id"]) == ["733", "815"]
+    assert catalog.frame["inc_deg"].tolist() == pytest.approx([99.0143, 99.8646])
+    with pytest.raises(TypeError, match=r"sdc_cvx\.read_catalog\("):
+        sdc_cvx.solve(str(path), Mission(n=2))

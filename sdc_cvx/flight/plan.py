@@ -133,7 +133,9 @@ class FlightPlan:
             if (folder.parent / "campaign.json").exists():  # a mission of a campaign
                 raise FlightError(f"{folder}: a mission folder of a campaign: fly the "
                                   f"campaign folder {folder.parent} (its scenario is there)")
-            raise FlightError(f"{folder}: no scenario.toml, so no catalog to fly against")
+            raise FlightError(f"{folder}: no scenario.toml, so no catalog to fly against (a "
+                              "folder of Solution.save() without scenario_toml=: fly that "
+                              "solution in Python, solution.fly())")  # fmt: skip
         start = plan["start"]
         try:
             scenario = Scenario.load(scenario_file)

@@ -157,8 +157,8 @@ def _check_types(catalog, mission, solver) -> None:
         hint = ""
         if isinstance(catalog, str | os.PathLike):
             path = os.fspath(catalog)
-            hint = (f": read the file first, e.g. solve(sdc_cvx.Catalog.from_csv({path!r}), "
-                    "mission), or inputs.formats.read_catalog for TLE, OMM, GTOC9")  # fmt: skip
+            hint = (f": read the file first, e.g. solve(sdc_cvx.read_catalog({path!r}), "
+                    "mission) (CSV, TLE, OMM or GTOC9, told from the content)")  # fmt: skip
         raise TypeError(f"solve: catalog must be a Catalog, got {type(catalog).__name__} "
                         f"{catalog!r:.80}{hint}")  # fmt: skip
     for name, value, kind in (("mission", mission, Mission), ("solver", solver, SolverOptions)):
