@@ -63,6 +63,7 @@ debris is only found then.  The tables are checked by :mod:`~sdc_cvx.study.scena
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -375,7 +376,8 @@ def apply_overrides(scenario: Scenario, changes: Mapping, origin: str = "overrid
             continue
         dotted = _dotted_name(name)
         if dotted is None:
-            problems.append(f"unknown override {name!r}; {_allowed_overrides()}")
+            problems.append(f"unknown override {name!r}{_override_hint(name)}; "
+                            f"{_allowed_overrides()}")
             continue
         table, key = dotted.split(".")
         if dotted == "catalog.path":
@@ -411,6 +413,13 @@ def _dotted_name(name: str) -> str | None:
         if name in TABLE_KEYS[table]:
             return f"{table}.{name}"
     return None
+
+
+def _override_hint(name: str) -> str:
+    """`` (did you mean mission.tmax_days?)`` for a misspelt override, or nothing."""
+    dotted = [f"{table}.{key}" for table, keys in TABLE_KEYS.items() for key in keys]
+    close = difflib.get_close_matches(name, dotted, n=1)
+    return f" (did you mean {close[0]}?)" if close else ""
 
 
 def _allowed_overrides() -> str:

@@ -245,6 +245,10 @@ def test_overrides_are_validated_like_a_file():
         Scenario().with_overrides(n=True)
     with pytest.raises(ScenarioError, match="unknown override 'tmax'"):
         Scenario().with_overrides(tmax=3)
+    # a sweep's misspelt key (found as a new user): the nearest one is offered
+    with pytest.raises(ScenarioError, match=r"'mission\.tmax_day' \(did you mean "
+                                            r"mission\.tmax_days\?\)"):
+        Scenario().with_overrides(**{"mission.tmax_day": 100.0})
     with pytest.raises(ScenarioError, match=r"^command line: solver\.mip_gap"):
         apply_overrides(Scenario(), {"mip_gap": 3.0}, origin="command line")
 
