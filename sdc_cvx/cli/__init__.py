@@ -2,8 +2,9 @@
 
 Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``fly RUN_DIR``, ``sweep
 STUDY.toml``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``.  Exit codes: 0 success,
-2 invalid input (nothing written), 3 infeasible mission or campaign, 4 solver failure or a
-full disk, 130 interrupted (Ctrl-C) with nothing written.
+2 invalid input (nothing written), 3 infeasible mission or campaign (or a flight not flown
+as planned, its files written), 4 solver failure or a full disk, 130 interrupted (Ctrl-C)
+with nothing written.
 
 The group :func:`main` gathers the commands of :mod:`.run`, :mod:`.campaign`, :mod:`.fly`,
 :mod:`.sweep` and :mod:`.tables` (``edges``, ``catalog``, ``solvers``); they share

@@ -2,7 +2,8 @@
 :func:`interrupted_exit`.
 
 Exit codes: 0 success, 2 invalid input (nothing written), 3 infeasible mission or
-campaign, 4 solver failure or a full disk, 130 interrupted (Ctrl-C) with nothing written.
+campaign (or a flight not flown as planned, its files written), 4 solver failure or a full
+disk, 130 interrupted (Ctrl-C) with nothing written.
 """
 
 from __future__ import annotations

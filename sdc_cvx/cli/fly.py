@@ -29,7 +29,8 @@ FORCE_MODELS = ("j2", "j2-j4", "j2-j4-drag")
 @click.option("--quiet", is_flag=True, help="Only the summary.")
 def fly_command(run_dir, force_model, quiet):
     """Fly RUN_DIR's plan: phasing, manoeuvres, a numerical replay against the debris
-    (SGP4), and CCSDS OEM export, in RUN_DIR/flight/ (each mission of a campaign folder)."""
+    (SGP4), and CCSDS OEM export, in RUN_DIR/flight/ (each mission of a campaign folder).
+    Exit 3 when a flight is incomplete, late or missed (its files are written)."""
     fly_folder(Path(run_dir), force_model, quiet=quiet)
 
 
