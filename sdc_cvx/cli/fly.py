@@ -26,19 +26,24 @@ FORCE_MODELS = ("j2", "j2-j4", "j2-j4-drag")
 @click.argument("run_dir", type=click.Path(exists=True, file_okay=False))
 @click.option("--force-model", type=click.Choice(FORCE_MODELS), default="j2", show_default=True,
               help="The vehicle's force model: J2; J2 with J3-J4; and drag.")  # fmt: skip
+@click.option("--catalog", "catalog_path", type=click.Path(dir_okay=False), default=None,
+              help="Fly against this catalog file instead of the one scenario.toml names "
+                   "(moved since the run; a refreshed one is compared with the plan's).")
 @click.option("--quiet", is_flag=True, help="Only the summary.")
-def fly_command(run_dir, force_model, quiet):
+def fly_command(run_dir, force_model, catalog_path, quiet):
     """Fly RUN_DIR's plan: phasing, manoeuvres, a numerical replay against the debris
     (SGP4), and CCSDS OEM export, in RUN_DIR/flight/ (each mission of a campaign folder).
     Exit 3 when a flight is incomplete, late or missed (its files are written)."""
-    fly_folder(Path(run_dir), force_model, quiet=quiet)
+    fly_folder(Path(run_dir), force_model, quiet=quiet, catalog_path=catalog_path)
 
 
 def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
-               stdout: bool = True, after_run: bool = False) -> None:  # fmt: skip
+               stdout: bool = True, after_run: bool = False,
+               catalog_path=None) -> None:  # fmt: skip
     """Fly every plan of ``folder`` and write its ``flight/`` (exit on failure); the
     summary on stdout, or on stderr (``stdout=False``: ``run --json`` keeps stdout JSON).
-    ``after_run``: ``run --fly`` has just written ``folder`` (a Ctrl-C says it is kept)."""
+    ``after_run``: ``run --fly`` has just written ``folder`` (a Ctrl-C says it is kept);
+    ``catalog_path``: the catalog to fly against, not the one the scenario names."""
     from ..errors import SdcError
     from ..flight import fly, run_folder_plans
     from ..flight.result import flight_folder_problem
@@ -50,7 +55,7 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
     unflown = []  # (folder, status) of each flight not flown as planned
     try:
         with _flying(folder):
-            plans = run_folder_plans(folder)
+            plans = run_folder_plans(folder, catalog_path)
             for sub, _ in plans:  # before any flight: a folder of the user's is never replaced
                 if (problem := flight_folder_problem(sub)) is not None:
                     fail(problem)

@@ -27,7 +27,8 @@ def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
     from ..study.scenario import Scenario, apply_overrides
 
     try:
-        scenario = Scenario() if scenario_file is None else Scenario.load(scenario_file)
+        scenario = Scenario() if scenario_file is None else Scenario.load(
+            scenario_file, catalog_path=overrides.get("catalog_path"))  # its own may be gone
         return apply_overrides(scenario, overrides, origin="command line")
     except ScenarioError as err:
         fail(str(err))

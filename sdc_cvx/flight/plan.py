@@ -95,8 +95,10 @@ class FlightPlan:
                           accel=mission.transfer_model().describe().get("accel_mps2"))  # fmt: skip
 
     @classmethod
-    def from_run_folder(cls, folder, *, scenario_file=None, campaign_start=None) -> FlightPlan:
-        """The plan of a run folder (``solution.json``, and the catalog of ``scenario.toml``).
+    def from_run_folder(cls, folder, *, scenario_file=None, campaign_start=None,
+                        catalog_path=None) -> FlightPlan:  # fmt: skip
+        """The plan of a run folder (``solution.json``, and the catalog of ``scenario.toml``,
+        or ``catalog_path`` instead: a catalog moved since the run).
 
         ``scenario_file``: the scenario naming the catalog, default the folder's own (a
         campaign's mission folder has the campaign's, :func:`run_folder_plans`, and
@@ -138,14 +140,17 @@ class FlightPlan:
                               "solution in Python, solution.fly())")  # fmt: skip
         start = plan["start"]
         try:
-            scenario = Scenario.load(scenario_file)
+            scenario = Scenario.load(scenario_file, catalog_path=catalog_path)
             fitted = scenario.catalog_raan_rates != "j2"
             day0 = pd.Timestamp(campaign_start) if fitted and campaign_start else start
             if day0 is not None:  # the RAANs at the run's day 0, whatever the catalog holds now
                 scenario = scenario.with_overrides(catalog_start=day0.to_pydatetime())
             catalog = scenario.load_catalog(on_invalid="set aside")
         except SdcError as err:
-            raise FlightError(_naming(scenario_file, err)) from None
+            moved = catalog_path is None and "catalog.path" in str(err)
+            raise FlightError(_naming(scenario_file, err) + (
+                " (moved since the run? fly RUN_DIR --catalog FILE flies against it where it "
+                "is now)" if moved else "")) from None  # fmt: skip
 
         def rates(debris: Catalog) -> Catalog:  # as the run fitted them, at the plan's day 0
             if not fitted:
@@ -238,19 +243,21 @@ def unflyable(catalog: Catalog, mission) -> str | None:
     return missing_phase(catalog)
 
 
-def run_folder_plans(folder) -> list[tuple[Path, FlightPlan]]:
-    """``(folder, plan)`` of a run folder, or of each mission of a campaign folder."""
+def run_folder_plans(folder, catalog_path=None) -> list[tuple[Path, FlightPlan]]:
+    """``(folder, plan)`` of a run folder, or of each mission of a campaign folder (their
+    catalog that of ``catalog_path`` if given, else their scenario's)."""
     folder = Path(folder)
     campaign = folder / "campaign.json"
     if not campaign.exists():
-        return [(folder, FlightPlan.from_run_folder(folder))]
+        return [(folder, FlightPlan.from_run_folder(folder, catalog_path=catalog_path))]
     data = _read_json(campaign)
     missions = data.get("missions")
     if not isinstance(missions, list) or not missions:
         raise FlightError(f"{campaign}: no missions to fly")
     subs = [folder / str(entry.get("folder", "")) for entry in missions]
     return [(sub, FlightPlan.from_run_folder(sub, scenario_file=folder / "scenario.toml",
-                                             campaign_start=data.get("start_utc")))
+                                             campaign_start=data.get("start_utc"),
+                                             catalog_path=catalog_path))
             for sub in subs]  # fmt: skip
 
 

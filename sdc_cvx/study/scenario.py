@@ -166,8 +166,12 @@ class Scenario:
 
     # ------------------------------------------------------------------ reading
     @classmethod
-    def load(cls, path: str | os.PathLike) -> Scenario:
+    def load(cls, path: str | os.PathLike, *, catalog_path=None) -> Scenario:
         """Read and validate a scenario TOML file.
+
+        ``catalog_path`` replaces the file's ``[catalog] path`` before it is checked (a
+        catalog moved since: the file's own need not exist); relative to the current
+        folder, its format told again unless the file gives one.
 
         Raises
         ------
@@ -177,6 +181,9 @@ class Scenario:
         """
         where = os.fspath(path)
         text, data = read_toml(path, "scenario file")
+        if catalog_path is not None and isinstance(data.get("catalog", {}), dict):
+            table = data.setdefault("catalog", {})
+            table["path"] = os.fspath(Path.cwd() / Path(catalog_path).expanduser())
         source = Path(path).resolve()
         return cls(**scenario_fields(data, where, base=source.parent), source=source)
 

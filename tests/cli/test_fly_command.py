@@ -147,8 +147,15 @@ def test_a_missing_catalog_names_the_scenario_file_once(tmp_path):
     scenario.write_text(scenario.read_text(encoding="utf-8").replace(
         json.dumps(str(PAPER_CSV))[1:-1], "nope/missing.csv"), encoding="utf-8")  # fmt: skip
     result = cli_process("fly", str(folder))
-    assert_refused(result, "missing.csv", "file not found")
+    assert_refused(result, "missing.csv", "file not found", "--catalog FILE")
     assert result.stderr.count("scenario.toml") == 1, result.stderr
+    # --catalog: the catalog where it is now (found as a new user: a project moved, its
+    # run folders named their catalogs by absolute paths); this one is read, and then
+    # refused for what it lacks, not for the file that is gone
+    moved = tmp_path / "moved.csv"
+    moved.write_bytes(PAPER_CSV.read_bytes())
+    result = cli_process("fly", str(folder), "--catalog", str(moved))
+    assert_refused(result, "moved.csv", "no position on their orbit", "arglat_deg")
 
 
 @pytest.mark.slow

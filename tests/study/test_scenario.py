@@ -467,3 +467,21 @@ def test_bad_types_and_strict_name_the_key(tmp_path, text, expected):
     with pytest.raises(ScenarioError) as caught:
         load(write(tmp_path, text))
     assert expected in str(caught.value)
+
+
+def test_a_scenario_whose_catalog_moved_loads_with_the_catalog_where_it_is(tmp_path,
+                                                                           monkeypatch):
+    """A run folder's scenario.toml names its catalog by an absolute path: once the
+    project moved, neither ``run SCENARIO --catalog FILE`` nor ``fly --catalog`` could
+    load it (the file's own path was checked first).  ``catalog_path`` replaces it
+    before the check, relative to the current folder."""
+    scenario = tmp_path / "scenario.toml"
+    scenario.write_text('[catalog]\npath = "/nowhere/debris.csv"\n\n[mission]\nn = 3\n',
+                        encoding="utf-8")  # fmt: skip
+    with pytest.raises(ScenarioError, match="file not found"):
+        Scenario.load(scenario)
+    (tmp_path / "here.csv").write_text(PAPER_CSV.read_text())
+    monkeypatch.chdir(tmp_path)
+    moved = Scenario.load(scenario, catalog_path="here.csv")
+    assert moved.catalog_path == tmp_path / "here.csv" and moved.mission.n == 3
+    assert len(moved.load_catalog()) == len(Catalog.from_csv(PAPER_CSV))
