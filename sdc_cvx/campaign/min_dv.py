@@ -23,6 +23,9 @@ in named steps (:class:`CampaignSearch`, one method each):
    nothing).  The integer master over the pool is the plan.  The loop ends when no
    launch has a column of negative reduced cost (the LP is solved), or plan and bound
    meet.
+   *Dive*: where the gap left is too wide to close (:data:`CLOSING_SHARE` of the plan
+   or more), a campaign built on the LP one mission at a time
+   (:mod:`~sdc_cvx.campaign.dive`), the plan if cheaper.
 4. *Closing*: if a gap is left, every mission whose reduced cost could be below
    ``plan - L(y)`` is enumerated (a campaign cheaper than the plan can only be made of
    such missions); the integer master over the pool is then the optimum, and the same
@@ -51,6 +54,7 @@ from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
 from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
+from .dive import dive
 from .greedy import greedy_campaign, repair
 from .master import solve_ip, solve_lp
 from .price_box import PriceCentre, uniform_centre
@@ -222,6 +226,12 @@ class CampaignSearch:
             bounds[result.launch] = min(bounds[result.launch], result.lower_mps)
         return bounds
 
+    def too_wide_to_close(self) -> bool:
+        """A plan whose gap to the best Lagrangian bound is over :data:`CLOSING_SHARE`
+        of it: the closing step would enumerate about every mission (the dive runs)."""
+        return self.plan is not None and (
+            self.upper - self.lagrangian > CLOSING_SHARE * self.upper)
+
     def master_plan(self, time_limit_s: float | None = None) -> None:
         """The integer master over the pool: the plan, if it improves (within
         ``time_limit_s``: the best campaign its MILP found by then)."""
@@ -245,6 +255,8 @@ class CampaignSearch:
         last = None
         if not self.within():
             last = self.generate_columns()
+        if self.too_wide_to_close() and not self.out_of_time():
+            dive(self)  # a better plan: the closing's window may then be narrow enough
         if not self.within() and not self.out_of_time() and (
                 last is not None or self.plan is None):  # without a plan: no prices needed
             self.close(*(last or (None, None)))
@@ -374,7 +386,7 @@ class CampaignSearch:
             self.say("  no campaign in the pool: every mission that flies, launch by launch")
         else:
             window = self.upper - self.lagrangian  # L(prices): the argument's own bound
-            if window > CLOSING_SHARE * self.upper:
+            if self.too_wide_to_close():
                 self.notes.append(
                     f"the closing step was not run: the gap left, {window:.2f} m/s "
                     f"({window / self.upper:.0%} of the plan), is too wide to close by "

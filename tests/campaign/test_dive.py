@@ -1,0 +1,71 @@
+"""The dive (``campaign/dive.py``): a campaign built on the master LP one mission at a
+time, against the brute force (``tests/campaign/bruteforce.py``), and what it says when it
+cannot finish."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+from sdc_cvx import Mission
+from sdc_cvx.campaign.dive import dive, residual
+from sdc_cvx.campaign.min_dv import CampaignSearch
+from sdc_cvx.campaign.pricing import Column
+from sdc_cvx.campaign.pricing_runs import PricingRuns
+from sdc_cvx.inputs.campaign import Campaign
+from sdc_cvx.inputs.synthetic import sso_catalog
+from sdc_cvx.milp.types import SolverOptions
+from tests.campaign.test_campaign_bruteforce import GAP, GRID_TOL_MPS, REPAIRED, brute
+
+
+def column(launch: int, debris: tuple, dv: float) -> Column:
+    return Column(launch, debris, debris, dv, dv, None)
+
+
+def test_the_residual_keeps_the_fixed_missions_and_those_that_share_no_debris():
+    fixed = {0: column(0, (0, 1), 5.0)}
+    pool = [column(0, (2, 3), 1.0), column(1, (1, 2), 1.0), column(1, (2, 3), 2.0),
+            column(2, (4,), 3.0), column(2, (0, 4), 1.0)]  # fmt: skip
+    kept = residual(pool, fixed)
+    assert kept == [fixed[0], pool[2], pool[3]]
+
+
+def test_a_dive_after_the_column_generation_builds_the_brute_forces_optimum():
+    """Every debris must go (three launches of two debris, six debris): after the column
+    generation, the dive, from no plan, fixes one mission at a time and ends on a campaign
+    that flies: one mission per launch, every debris once, at the brute force's optimum."""
+    best = brute(REPAIRED)
+    catalog = REPAIRED.catalog()
+    with PricingRuns(True, None, None, 1, 1) as run:
+        search = CampaignSearch(catalog, REPAIRED.campaign(), SolverOptions(), GAP, np.inf,
+                                lambda line: None, run)  # fmt: skip
+        search.launches_alone()
+        search.generate_columns()
+        lower = search.lower
+        search.plan, search.upper = None, np.inf  # the dive's own campaign, whatever the pool's
+        dive(search)
+    assert search.plan is not None, search.notes
+    assert [c.launch for c in search.plan] == [0, 1, 2]
+    removed = sorted(i for c in search.plan for i in c.debris)
+    assert removed == list(range(len(catalog)))
+    assert search.upper == pytest.approx(sum(c.dv_mps for c in search.plan), abs=1e-9)
+    assert best.dv_mps - 3 * GRID_TOL_MPS <= search.upper <= best.dv_mps * (1 + GAP) + 1e-3
+    assert search.lower == lower  # a dive proves nothing
+    dives = [h["step"] for h in search.history if h["step"].startswith("dive")]
+    assert dives[-1].startswith("dive (3 of 3 missions fixed")
+
+
+def test_a_dive_that_finds_no_campaign_keeps_the_plan_and_says_why():
+    """Where the missions left cannot remove the debris that must go and the pricing
+    brings no new one, the dive stops: the plan stays, and the notes say how far it got."""
+    catalog = sso_catalog(4, seed=3)
+    campaign = Campaign.of([0.0, 100.0], Mission(n=2), must_remove=list(catalog.ids))
+    search = CampaignSearch(catalog, campaign, SolverOptions(), GAP, time.perf_counter() + 60,
+                            lambda line: None, lambda tasks: [])  # fmt: skip
+    search.pool.add([column(0, (0, 1), 10.0), column(1, (0, 2), 10.0)])  # debris 3: none
+    search.plan, search.upper = ["a campaign"], 500.0
+    dive(search)
+    assert search.plan == ["a campaign"] and search.upper == 500.0
+    assert search.notes[-1].startswith("the dive ended with 0 of 2 missions fixed")
