@@ -314,3 +314,28 @@ def test_launches_left_without_a_plan_by_the_time_limit_are_named_together(catal
     said = str(raised.value)
     assert said.startswith("mission 1 (launch day 0) and mission 3 (launch day 200): ")
     assert "mission 2" not in said and "allow more time" in said
+
+
+def test_the_column_generation_stops_where_the_gap_left_is_the_integer_gap(catalog):
+    """GTOC9-all: rounds 10-15 (2 minutes each) raised the bound from 5473.76 to 5483.23
+    m/s under an LP of 5489.30 against a plan of 9560.46 m/s, and the dive after them had
+    50 s left.  Where the gap is too wide to close and the LP (not boxed) is within 1 % of
+    that gap above the bound, the rounds stop; not where the gap could be closed, nor
+    while the box binds or the LP needs its artificial columns."""
+    from sdc_cvx.campaign.master import MasterLP
+    from sdc_cvx.campaign.min_dv import CampaignSearch
+    from sdc_cvx.milp.types import SolverOptions
+
+    def lp(value, boxed=0.0, artificial=0.0):
+        return MasterLP(value, np.zeros(2), np.zeros(len(catalog)), np.zeros(0), artificial,
+                        boxed)  # fmt: skip
+
+    search = CampaignSearch(catalog, Campaign.of([0.0, 100.0], Mission(n=2)), SolverOptions(),
+                            1e-3, np.inf, lambda line: None, lambda tasks: [])  # fmt: skip
+    search.plan, search.upper, search.lagrangian = ["a campaign"], 9560.46, 5473.76
+    assert search.integer_gap(lp(5489.96))  # 16.20 m/s of a 4086.70 m/s gap
+    assert not search.integer_gap(lp(5520.0))  # 46.24 m/s: 1.1 % of the gap
+    assert not search.integer_gap(lp(5489.96, boxed=1.0))
+    assert not search.integer_gap(lp(5489.96, artificial=0.5))
+    search.upper = 7000.0  # a gap of 22 % of the plan: the closing step runs instead
+    assert not search.integer_gap(lp(5474.0))
