@@ -221,9 +221,11 @@ def changed_since_plan(catalog: Catalog, planned: list[dict]) -> list[str]:
     out = []
     for entry in planned:
         name = str(entry.get("id"))
+        if name not in frame.index:  # _build has refused a debris the catalog lacks
+            continue
         for column, tolerance in CHANGE_TOLERANCE.items():
             then = entry.get(column)
-            if name not in frame.index or not isinstance(then, int | float):
+            if not isinstance(then, int | float):
                 continue
             now = float(frame.at[name, column])
             moved = now - float(then)
