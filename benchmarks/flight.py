@@ -29,6 +29,11 @@ whole 2020 catalogue at 700-800 km and 98-99 deg (n = 4: four debris of one brea
     python benchmarks/flight.py --cases sso --rates model --planner-rates j2
     python benchmarks/flight.py --force j2-j4 --time-limit 300
     python benchmarks/flight.py --accel 1e-4 --planner-rates j2   # a low-thrust vehicle
+    python benchmarks/flight.py --deorbit-days 2   # two days at each debris (T_deorb)
+
+``--deorbit-days`` gives each debris the paper's operations time T_deorb (0 in its
+case): the plan then leaves the flight that time after each arrival for its corrections,
+and the next leg's phasing starts from the plan's date instead of after it.
 
 The machine it ran on is printed first: compare times within one run.
 """
@@ -52,9 +57,10 @@ TRANSFERS = ("depart", "drift", "leave_drift", "arrive",  # impulses, then thrus
 
 
 def scenario(case: str, time_limit: float | None, raan_rates: str = "j2",
-             accel: float | None = None):  # fmt: skip
-    """The case's scenario: catalog, selection, mission (n = 5, 4 for ``drag``; one year),
-    solver; a low-thrust vehicle of acceleration ``accel`` [m/s^2] when given."""
+             accel: float | None = None, deorbit_days: float = 0.0):  # fmt: skip
+    """The case's scenario: catalog, selection, mission (n = 5, 4 for ``drag``; one year;
+    ``deorbit_days`` at each debris), solver; a low-thrust vehicle of acceleration
+    ``accel`` [m/s^2] when given."""
     from sdc_cvx.study.scenario import Scenario
 
     if case == "sso":
@@ -70,24 +76,27 @@ def scenario(case: str, time_limit: float | None, raan_rates: str = "j2",
     else:
         found = Scenario.load(ROOT / "examples" / "cluster_sl16_71deg.toml")
     found = found.with_overrides(n=4 if case == "drag" else 5, tmax_days=365.25,
-                                 time_limit_s=time_limit, raan_rates=raan_rates)  # fmt: skip
+                                 time_limit_s=time_limit, raan_rates=raan_rates,
+                                 deorbit_days=deorbit_days)  # fmt: skip
     if accel is not None:
         found = found.with_overrides(transfer="low-thrust", accel_mps2=accel)
     return found
 
 
-def plan(case: str, time_limit: float | None, raan_rates: str, accel: float | None = None):
+def plan(case: str, time_limit: float | None, raan_rates: str, accel: float | None = None,
+         deorbit_days: float = 0.0):
     """Solve the case as ``run`` does (the filters act first, then the RAAN rates of
     ``raan_rates``: the J2 formula's or SGP4's); print the plan."""
     from sdc_cvx import solve
 
-    chosen = scenario(case, time_limit, raan_rates, accel)
+    chosen = scenario(case, time_limit, raan_rates, accel, deorbit_days)
     catalog, _ = chosen.select_candidates()
     start = time.perf_counter()
     solution = solve(catalog, chosen.mission, solver=chosen.solver)
     seconds = time.perf_counter() - start
     print(f"\n== {case}: N = {len(catalog)}, n = {chosen.mission.n}, "
-          f"T_max {chosen.mission.tmax_days:g} d, planner's RAAN rates {raan_rates}, "
+          f"T_max {chosen.mission.tmax_days:g} d, T_deorb {deorbit_days:g} d, "
+          f"planner's RAAN rates {raan_rates}, "
           f"{chosen.mission.transfer_model().describe()}")  # fmt: skip
     print(f"plan      {' -> '.join(solution.path)}")
     print(f"          {solution.total_dv_mps:.2f} m/s, {solution.quality()}")
@@ -157,6 +166,8 @@ def main(argv=None):
                         "the scenario's)")  # fmt: skip
     parser.add_argument("--accel", type=float, help="plan and fly a low-thrust vehicle of "
                         "this acceleration [m/s^2] (default: impulsive)")  # fmt: skip
+    parser.add_argument("--deorbit-days", type=float, default=0.0, help="operations time "
+                        "T_deorb at each debris [days] (default 0, the paper's)")  # fmt: skip
     args = parser.parse_args(argv)
     from sdc_cvx.flight import FlightPlan, fly
 
@@ -168,7 +179,8 @@ def main(argv=None):
         for planner in args.planner_rates:
             label = f"{case}/{planner}"
             try:
-                solution, count, solve_s = plan(case, args.time_limit, planner, args.accel)
+                solution, count, solve_s = plan(case, args.time_limit, planner, args.accel,
+                                                args.deorbit_days)  # fmt: skip
             except Exception:  # a package failure: shown whole, the other cases still run
                 traceback.print_exc()
                 rows.append(dict(case=label, rates="-", failed="solve failed"))
