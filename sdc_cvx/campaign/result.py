@@ -147,6 +147,8 @@ class CampaignSolution:
                 f"{100 * self.gap_requested:g} %): gap {self.gap_mps:.2f} m/s, lower bound "
                 f"{self.lower_bound_mps:.2f} m/s"
             )
+        if self.status == RunStatus.OVER_CAPACITY:  # the note says so on its own line
+            return f"{self.status}, {gap} (lower bound {self.lower_bound_mps:.2f} m/s)"
         return f"{self.status}, {gap} ({why}; lower bound {self.lower_bound_mps:.2f} m/s)"
 
     def summary(self) -> str:
@@ -168,6 +170,8 @@ class CampaignSolution:
             lines.append(f"value     {self.value:g} removed (the most any campaign removes: "
                          f"{bound})")  # fmt: skip
         lines.append(f"total dV  {self.total_dv_mps:.2f} m/s, {self.quality()}")
+        if (tank := self.tank_text()) is not None:
+            lines.append(f"vehicle   {tank}")
         if self.greedy.dv_mps is not None:
             rel = self.greedy_gap_rel()
             above = "" if rel is None else f"; {100 * rel:.2f} % above the bound"
@@ -179,10 +183,27 @@ class CampaignSolution:
                      f"{self.pricings} pricing problems, {self.seconds:.1f} s")  # fmt: skip
         return "\n".join(lines)
 
+    def tank_text(self) -> str | None:
+        """Each mission's propellant against its tank, in a line (None without a vehicle
+        whose propellant is known)."""
+        blocks = [m.vehicle for m in self.missions]
+        if not all(b and "propellant_needed_kg" in b for b in blocks):
+            return None
+        needed = ", ".join(f"{b['propellant_needed_kg']:.1f}" for b in blocks)
+        tanks = {b.get("capacity_kg") for b in blocks}
+        if tanks == {None}:
+            return f"propellant per mission {needed} kg"
+        over = [str(k + 1) for k, b in enumerate(blocks) if not b["fits"]]
+        tank = "" if len(tanks) > 1 else f" of a {next(iter(tanks)):.1f} kg tank each"
+        return (f"propellant per mission {needed} kg{tank}; "
+                + (f"over the tank: mission {', '.join(over)}" if over else "every one fits"))
+
     def missions_frame(self) -> pd.DataFrame:
-        """``missions.csv``: one row per mission (launch day, path, ΔV, dates, folder)."""
+        """``missions.csv``: one row per mission (launch day, path, ΔV, dates, folder; with
+        a vehicle whose propellant is known, its propellant, tank, margin and fit)."""
         rows = []
         for k, (day, mission) in enumerate(zip(self.launch_days, self.missions, strict=True)):
+            tank = mission.vehicle if mission.vehicle and "fits" in mission.vehicle else {}
             rows.append({
                 "mission": k + 1, "launch_day": day, "path": "->".join(mission.path),
                 "n": len(mission.path), "total_dv_mps": mission.total_dv_mps,
@@ -192,7 +213,7 @@ class CampaignSolution:
                 "duration_days": mission.total_duration_days,
                 "end_day": day + mission.total_duration_days,
                 "tmax_days": mission.mission.tmax_days, "folder": mission_folder(k),
-            })  # fmt: skip
+            } | {key: tank[key] for key in TANK_COLUMNS if key in tank})  # fmt: skip
         return pd.DataFrame(rows)
 
     def pareto_frame(self) -> pd.DataFrame:
@@ -257,6 +278,25 @@ class CampaignSolution:
         from ..report.campaign_plots import campaign_figures
 
         return campaign_figures(self)
+
+
+TANK_COLUMNS = ("propellant_needed_kg", "capacity_kg", "margin_kg", "fits")
+"""The vehicle's columns of ``missions.csv`` (from each mission's ``vehicle`` block)."""
+
+
+def tank_status(missions, status: RunStatus, notes) -> tuple[RunStatus, tuple[str, ...]]:
+    """A campaign's status and notes once its missions' tanks are read: ``over_capacity``
+    and a note naming them where one needs more propellant than its tank holds (a
+    campaign never reported as flyable that is not), else unchanged."""
+    over = [(k, m.vehicle) for k, m in enumerate(missions)
+            if m.status == RunStatus.OVER_CAPACITY]  # fmt: skip
+    if not over:
+        return status, tuple(notes)
+    needs = ", ".join(f"mission {k + 1} needs {v['propellant_needed_kg']:.1f} kg of "
+                      f"{v['capacity_kg']:.1f} kg" for k, v in over)  # fmt: skip
+    note = (f"not flyable with this vehicle: {needs} (the least-ΔV campaign, searched without "
+            "the tank; objective = 'max-value' searches only missions that fit it)")
+    return RunStatus.OVER_CAPACITY, (*notes, note)
 
 
 def mission_folder(k: int) -> str:

@@ -37,7 +37,7 @@ from .pricing_runs import (
     ignored_options,
     pricings_at_once,
 )
-from .result import CampaignSolution, GreedyCampaign
+from .result import CampaignSolution, GreedyCampaign, tank_status
 
 DEFAULT_GAP_REL = 1e-3
 
@@ -146,6 +146,7 @@ def _status(search: CampaignSearch) -> RunStatus:
 def _solution(search: CampaignSearch, greedy: GreedyCampaign, seconds: float) -> CampaignSolution:
     status = _status(search)
     missions = tuple(_mission_solution(search, column, status) for column in search.plan)
+    status, notes = tank_status(missions, status, search.notes)
     greedy_paths = tuple(search.path_text(c) for c in greedy.missions)
     return CampaignSolution(
         campaign=search.campaign,
@@ -159,7 +160,7 @@ def _solution(search: CampaignSearch, greedy: GreedyCampaign, seconds: float) ->
         columns=len(search.pool),
         pricings=search.pricings,
         seconds=seconds,
-        notes=tuple(search.notes),
+        notes=notes,
         gap_requested=search.gap_rel,
     )
 

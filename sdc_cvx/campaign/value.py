@@ -59,7 +59,7 @@ from ..solution import OPTIMAL_GAP_MPS, RunStatus
 from .master import solve_ip
 from .plane_bound import campaign_plane_bound
 from .pricing import Column, Launch, Pricing, mission_solution
-from .result import CampaignSolution, GreedyCampaign
+from .result import CampaignSolution, GreedyCampaign, tank_status
 from .value_bound import cardinality_narrowing, counts_of, lagrangian_bound
 from .value_start import high_value_start, in_catalog, shared_out
 
@@ -460,6 +460,7 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
              for launch, c in ((found["launches"][c.launch], c) for c in found["plan"])]
     missions = tuple(mission_solution(launch, c, status, solver.backend)
                      for launch, c in zip(sized, found["plan"], strict=True))  # fmt: skip
+    status, notes = tank_status(missions, status, found["notes"])
     value, bound = found["value"], found["value_bound"]
     say(f"  value {value:g} (the most any campaign removes: "
         f"{'not proven' if bound is None else f'{bound:g}'}), {found['dv_mps']:.2f} m/s")
@@ -468,5 +469,5 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         total_dv_mps=found["dv_mps"], lower_bound_mps=found["dv_bound_mps"], status=status,
         greedy=GreedyCampaign(None, why="not computed for objective = 'max-value'"),
         columns=found["columns"], pricings=found["pricings"],
-        seconds=time.perf_counter() - clock, notes=found["notes"], gap_requested=gap,
+        seconds=time.perf_counter() - clock, notes=notes, gap_requested=gap,
         value=value, value_bound=bound, pareto=front)  # fmt: skip

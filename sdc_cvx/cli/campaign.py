@@ -19,8 +19,10 @@ from ..errors import (
     SweepError,
     listing,
 )
+from ..solution import RunStatus
 from .budget import MISSION_FOLDER_S, search_limit
 from .exits import (
+    INFEASIBLE,
     INPUT_ERROR,
     INTERRUPTED,
     SOLVER_FAILED,
@@ -70,11 +72,15 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     """Plan a removal campaign: K missions on given launch days, each debris removed once.
 
     SCENARIO.toml has a [campaign] table (launch_days, or missions with first_launch_day
-    and period_days; n and tmax_days per mission; must_remove) and the usual [catalog],
-    [mission] (every mission's defaults), [solver] and [selection] tables.  Writes a
-    campaign folder: campaign.json, missions.csv, history.csv, campaign.log, the figures
-    and one run folder per mission.  Exit codes: 2 invalid input (nothing written),
-    3 infeasible campaign (campaign.json says why), 4 solver failure.
+    and period_days; n, a count or [n_min, n_max], and tmax_days per mission; must_remove
+    or remove_all; objective "min-dv", "max-value" with dv_budget_mps, or "value-per-dv"
+    with price_per_value_mps, the values from [catalog] values) and the usual [catalog],
+    [mission] (every mission's defaults), [vehicle], [solver] and [selection] tables
+    (every key: examples/README.md).  Writes a campaign folder: campaign.json,
+    missions.csv, history.csv, campaign.log, the figures and one run folder per mission.
+    Exit codes: 2 invalid input (nothing written), 3 infeasible campaign (campaign.json
+    says why) or a campaign whose missions need more propellant than the vehicle's tank
+    holds (written, never called flyable), 4 solver failure.
     """
     started = time.perf_counter()  # --time-limit covers the whole command (cli/budget.py)
     from ..campaign.pricing_runs import ignored_options, pricings_at_once
@@ -220,6 +226,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
             info(line)
     else:
         click.echo("\n".join(lines))
+    if solution.status == RunStatus.OVER_CAPACITY:  # written, but never called flyable
+        fail(f"{solution.notes[-1]} (campaign folder {folder})", INFEASIBLE)
     if not solution.certified:
         click.echo(f"warning: {solution.status}; see the notes in campaign.json", err=True)
 

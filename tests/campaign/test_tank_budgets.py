@@ -114,3 +114,30 @@ def test_the_most_valuable_campaign_within_the_tanks_is_the_brute_forces():
     assert unbound == 5.0  # the tank binds: the ΔV ceiling alone would remove five
     assert sol.status == RunStatus.FEASIBLE and sol.value_bound == pytest.approx(unbound)
     assert any("more propellant than their tank holds" in note for note in sol.notes)
+
+
+def test_a_least_dv_campaign_over_its_tank_is_over_capacity_and_names_the_missions():
+    """``objective = "min-dv"`` searches without the tank: where a mission of its answer
+    needs more propellant than the tank holds (the rocket equation here), the campaign is
+    ``over_capacity``, never certified, and says which missions; missions.csv has each
+    mission's propellant and fit."""
+    catalog = sso_catalog(7, seed=5, inclination_spread_deg=0.8)
+    free = Vehicle(dry_mass_kg=DRY, propellant_kg=1e4, isp_s=ISP, kit_mass_kg=KIT)
+    campaign = Campaign.of([0.0, 200.0], Mission(vehicle=free), n=[2, 2],
+                           tmax_days=[250.0, 150.0])  # fmt: skip
+    roomy = solve_campaign(catalog, campaign, workers=1)
+    assert roomy.certified and roomy.status != RunStatus.OVER_CAPACITY
+    needs = [propellant_kg([leg.dv_mps for leg in m.legs]) for m in roomy.missions]
+    assert abs(needs[0] - needs[1]) > 1.0
+    tank = 0.5 * (needs[0] + needs[1])  # one mission fits, the other does not
+    small = Vehicle(dry_mass_kg=DRY, propellant_kg=tank, isp_s=ISP, kit_mass_kg=KIT)
+    sol = solve_campaign(catalog, Campaign.of([0.0, 200.0], Mission(vehicle=small), n=[2, 2],
+                                              tmax_days=[250.0, 150.0]), workers=1)  # fmt: skip
+    assert sol.status == RunStatus.OVER_CAPACITY and not sol.certified
+    over = int(np.argmax(needs))
+    assert f"mission {over + 1} needs {needs[over]:.1f} kg of {tank:.1f} kg" in sol.notes[-1]
+    assert f"mission {2 - over} needs" not in sol.notes[-1]
+    frame = sol.missions_frame()
+    assert frame["fits"].tolist() == [need <= tank for need in needs]
+    assert frame["propellant_needed_kg"].to_numpy() == pytest.approx(needs, rel=1e-6)
+    assert f"over the tank: mission {over + 1}" in sol.summary()
