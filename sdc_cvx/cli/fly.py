@@ -3,9 +3,10 @@
 Writes ``RUN_DIR/flight/`` (:mod:`sdc_cvx.flight.result`) and prints one line per leg
 and a summary: plan ΔV, flown ΔV, worst miss.  Exit 2 when the plan cannot be flown as
 asked (no phase for a debris, not a run folder, an injection orbit), 3 when a flight is
-not flown as planned (incomplete, late or missed: its ``flight/`` is written and says
-so), 4 when the folder cannot be written, 130 on Ctrl-C (an earlier ``flight/`` is kept
-whole).
+not flown as planned (incomplete, late, missed, or burning more propellant than the
+vehicle's tank holds: its ``flight/`` is written and says so) or a plan is not flown at
+all (it needs more propellant than the tank holds: ``over_capacity``), 4 when the folder
+cannot be written, 130 on Ctrl-C (an earlier ``flight/`` is kept whole).
 """
 
 from __future__ import annotations
@@ -33,7 +34,8 @@ FORCE_MODELS = ("j2", "j2-j4", "j2-j4-drag")
 def fly_command(run_dir, force_model, catalog_path, quiet):
     """Fly RUN_DIR's plan: phasing, manoeuvres, a numerical replay against the debris
     (SGP4), and CCSDS OEM export, in RUN_DIR/flight/ (each mission of a campaign folder).
-    Exit 3 when a flight is incomplete, late or missed (its files are written)."""
+    Exit 3 when a flight is incomplete, late, missed or over its vehicle's tank (its files
+    are written), or a plan over the tank is not flown."""
     fly_folder(Path(run_dir), force_model, quiet=quiet, catalog_path=catalog_path)
 
 
@@ -60,6 +62,10 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
                 if (problem := flight_folder_problem(sub)) is not None:
                     fail(problem)
             for sub, plan in plans:
+                if plan.over_capacity is not None:  # never called flyable (as run --fly)
+                    click.echo(f"not flown: {sub}: {plan.over_capacity}", err=True)
+                    unflown.append((sub, "over_capacity"))
+                    continue
                 progress(f"flying {sub}: {' -> '.join(plan.catalog.frame['id'])}")
                 for note in plan.notes:  # a catalog changed since the run
                     click.echo(f"warning: {note}", err=True)
@@ -83,7 +89,8 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
     if unflown:  # written, but never called flown: a script must not carry on
         which = ", ".join(f"{sub} {status}" for sub, status in unflown)
         fail(f"{len(unflown)} of {len(plans)} plan(s) not flown as planned ({which}); "
-             "see the notes in flight.json", INFEASIBLE)  # fmt: skip
+             "see the notes in each one's flight.json (solution.json for a plan not flown)",
+             INFEASIBLE)  # fmt: skip
 
 
 def warn_replaced_flights(out_dir) -> None:

@@ -18,6 +18,7 @@ import pandas as pd
 
 from ..errors import CatalogError, InputError, SdcError, listing
 from ..inputs.catalog import Catalog
+from ..inputs.vehicle import Vehicle
 from ..physics.orbits import SECONDS_PER_DAY
 from .ephemeris import missing_phase
 from .solution_file import SolutionFileError, checked_solution
@@ -47,6 +48,38 @@ class PlannedLeg:
 
 
 @dataclass(frozen=True)
+class PlannedTank:
+    """The vehicle of a plan whose propellant is known: what the flight's is measured
+    against (:attr:`~sdc_cvx.flight.result.Flight.propellant`).
+
+    Attributes
+    ----------
+    vehicle : Vehicle
+        With its dry mass and Isp (and its tank, ``propellant_kg``, when given).
+    operations_dv_mps : tuple of float
+        ΔV of the operations at each debris of the path [m/s], in path order.
+    planned_kg : float
+        The propellant the plan needs [kg].
+    """
+
+    vehicle: Vehicle
+    operations_dv_mps: tuple[float, ...]
+    planned_kg: float
+
+    @classmethod
+    def of(cls, vehicle, block, operations, path) -> PlannedTank | None:
+        """From a plan's mission vehicle, its solution's ``vehicle`` block and
+        ``operations`` (``solution.json``'s, or a Solution's), over the path's ids; None
+        without a vehicle whose propellant the plan computed."""
+        if (vehicle is None or not vehicle.can_budget() or not isinstance(block, dict)
+                or not isinstance(block.get("propellant_needed_kg"), int | float)):
+            return None
+        per_debris = (operations or {}).get("per_debris_mps") or {}
+        return cls(vehicle, tuple(float(per_debris.get(name, 0.0)) for name in path),
+                   float(block["propellant_needed_kg"]))  # fmt: skip
+
+
+@dataclass(frozen=True)
 class FlightPlan:
     """A plan to fly: its legs, the mission's limits and the catalog rows of its debris.
 
@@ -67,6 +100,11 @@ class FlightPlan:
         A low-thrust plan's thrust acceleration [m/s^2]; None for an impulsive plan.
     notes : tuple of str
         What the flight must say of the plan (a catalog changed since the run).
+    tank : PlannedTank or None
+        The vehicle, where the plan computed its propellant.
+    over_capacity : str or None
+        Why the plan itself is not flyable (its status ``over_capacity``: it needs more
+        propellant than the tank holds); ``fly`` does not fly it.
     """
 
     legs: tuple[PlannedLeg, ...]
@@ -77,6 +115,8 @@ class FlightPlan:
     plan_end_day: float
     accel_mps2: float | None = None
     notes: tuple[str, ...] = ()
+    tank: PlannedTank | None = None
+    over_capacity: str | None = None
 
     @classmethod
     def from_solution(cls, solution) -> FlightPlan:
@@ -90,9 +130,14 @@ class FlightPlan:
                                 int(leg.phases.get("laps", 0)))
                      for leg in solution.legs)  # fmt: skip
         mission = solution.mission
-        return cls._build(legs, solution.catalog, mission.tmax_days, mission.drift_altitude_km,
-                          solution.total_duration_days,
-                          accel=mission.transfer_model().describe().get("accel_mps2"))  # fmt: skip
+        built = cls._build(legs, solution.catalog, mission.tmax_days, mission.drift_altitude_km,
+                           solution.total_duration_days,
+                           accel=mission.transfer_model().describe().get("accel_mps2"))  # fmt: skip
+        over = (solution.notes[-1] if str(solution.status) == "over_capacity" and solution.notes
+                else None)  # fmt: skip
+        return dataclasses.replace(
+            built, over_capacity=over, tank=PlannedTank.of(
+                mission.vehicle, solution.vehicle, solution.operations, solution.path))
 
     @classmethod
     def from_run_folder(cls, folder, *, scenario_file=None, campaign_start=None,
@@ -168,6 +213,11 @@ class FlightPlan:
                                plan["total_duration_days"], rates=rates, accel=accel)  # fmt: skip
         except CatalogError as err:  # SGP4 cannot fly a debris over the window of its rate
             raise FlightError(_naming(scenario_file, err)) from None
+        built = dataclasses.replace(
+            built, over_capacity=_over_capacity(data),
+            tank=PlannedTank.of(scenario.mission.vehicle, data.get("vehicle"),
+                                data.get("operations"),
+                                built.catalog.frame["id"].astype(str).tolist()))
         changes = changed_since_plan(built.catalog, plan["debris"])
         if not changes:
             return built
@@ -285,6 +335,15 @@ def _check_transfer(transfer: str, what: str) -> None:
 def _check_start(injection, what: str) -> None:
     if (problem := _start_problem(injection)) is not None:
         raise FlightError(f"{what}: {problem}")
+
+
+def _over_capacity(data: dict) -> str | None:
+    """Why a ``solution.json`` is not flyable with its vehicle (its last note), or None."""
+    if data.get("status") != "over_capacity":
+        return None
+    notes = [n for n in data.get("notes") or () if isinstance(n, str)]
+    said = next((n for n in reversed(notes) if n.startswith("not flyable")), None)
+    return said or "the plan needs more propellant than the vehicle's tank holds"
 
 
 def _read_json(path: Path) -> dict:

@@ -12,8 +12,10 @@ swapped in, as the run folder itself is):
   draan_deg, correction_dv_mps, phasing_shift_h, phasing_dv_mps``, then ``delay_days``
   (arrival after the plan's) and ``in_time``; measured just after the ``arrive`` impulse;
 - ``trajectory.oem``: CCSDS OEM 2.0 (KVN, GCRF, UTC), one segment per arc between impulses;
-- ``flight.json``: the totals, the force model and the status; ``flight.png``: misses and
-  ΔV per leg, the propagated altitude against the plan's.
+- ``flight.json``: the totals, the force model and the status (with a vehicle whose
+  propellant the plan computed, ``propellant``: the flight's by the rocket equation
+  against the plan's and the tank); ``flight.png``: misses and ΔV per leg, the
+  propagated altitude against the plan's.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..inputs.vehicle import PropellantBudget, propellant_budget
 from ..physics.orbits import SECONDS_PER_DAY
 from ..report.atomic import write_atomic
 from ..report.out_folder import FLIGHT_FILES, FLIGHT_FOLDER, is_ours
@@ -147,14 +150,31 @@ class Flight:
         return self.end_day <= self.plan.tmax_days + 1e-9
 
     @property
+    def propellant(self) -> PropellantBudget | None:
+        """The flight's propellant and masses by the rocket equation
+        (:func:`~sdc_cvx.inputs.vehicle.propellant_budget`): each leg's flown ΔV (a leg
+        not flown, the plan's) and the plan's operations at each debris; None without a
+        vehicle whose propellant the plan computed (:class:`~sdc_cvx.flight.plan.PlannedTank`)."""
+        tank = self.plan.tank
+        if tank is None:
+            return None
+        legs = [sum(m.dv_mps for m in self.maneuvers if m.leg == k + 1)
+                if k < len(self.rendezvous) else leg.dv_mps
+                for k, leg in enumerate(self.plan.legs)]  # fmt: skip
+        return propellant_budget(tank.vehicle, legs, tank.operations_dv_mps)
+
+    @property
     def status(self) -> str:
         """``flown``; ``late`` when the flight ends after T_max; ``incomplete`` when a leg
         could not be flown (``notes`` says which and why); ``missed`` when a rendezvous
-        stays more than :data:`MISSED_KM` from its debris."""
+        stays more than :data:`MISSED_KM` from its debris; ``over_capacity`` when the
+        flight burns more propellant than the vehicle's tank holds."""
         if not self.complete:
             return "incomplete"
         if self.worst_miss_km > MISSED_KM:
             return "missed"
+        if (burnt := self.propellant) is not None and not burnt.fits:
+            return "over_capacity"
         return "flown" if self.within_tmax else "late"
 
     @property
@@ -170,6 +190,10 @@ class Flight:
         if self.worst_miss_km > MISSED_KM:
             return (f"a rendezvous missed by {self.worst_miss_km:.0f} km (more than "
                     f"{MISSED_KM:g} km): the corrections did not close it")  # fmt: skip
+        if (burnt := self.propellant) is not None and not burnt.fits:
+            return (f"the flight burns {burnt.needed_kg:.1f} kg of propellant (the plan "
+                    f"{self.plan.tank.planned_kg:.1f} kg), the tank holds "
+                    f"{burnt.capacity_kg:.1f} kg")  # fmt: skip
         if not self.within_tmax:
             return f"the flight ends on day {self.end_day:.2f}, after T_max"
         return None
@@ -186,9 +210,15 @@ class Flight:
                         f"{len(self.plan.legs)} legs flown)")  # fmt: skip
         met = (f"worst miss {self.worst_miss_km:.2f} km; ends day {self.end_day:.2f}"
                if self.rendezvous else "no debris met")  # fmt: skip
-        return (f"flight    {planned}, flown {self.flown_dv_mps:.2f} m/s "
+        line = (f"flight    {planned}, flown {self.flown_dv_mps:.2f} m/s "
                 f"({extra:+.2f} %), {met}, {limit} ({self.force.describe()['name']}, "
                 f"{self.rates} rates, {self.seconds:.0f} s)")  # fmt: skip
+        if (burnt := self.propellant) is None:
+            return line
+        tank = ("" if burnt.capacity_kg is None else f" of a {burnt.capacity_kg:.1f} kg tank"
+                + ("" if burnt.fits else ": OVER CAPACITY"))  # fmt: skip
+        return (f"{line}\n          propellant flown {burnt.needed_kg:.1f} kg (the plan "
+                f"{self.plan.tank.planned_kg:.1f} kg){tank}")  # fmt: skip
 
     # -- tables -----------------------------------------------------------------------
     def epochs(self, seconds) -> pd.DatetimeIndex:
@@ -234,10 +264,19 @@ class Flight:
             "force": self.force.describe(),
             "rates": self.rates,
             "seconds": self.seconds,
+            "propellant": self._propellant_dict(),
             "notes": list(self.notes),
         }
         return {k: (None if isinstance(v, float) and not np.isfinite(v) else v)
                 for k, v in out.items()}
+
+    def _propellant_dict(self) -> dict | None:
+        """``flight.json``'s ``propellant`` [kg]: flown, planned, the tank, margin, fit."""
+        if (burnt := self.propellant) is None:
+            return None
+        return {"flown_kg": burnt.needed_kg, "planned_kg": self.plan.tank.planned_kg,
+                "capacity_kg": burnt.capacity_kg, "margin_kg": burnt.margin_kg,
+                "fits": burnt.fits}  # fmt: skip
 
     # -- files ------------------------------------------------------------------------
     def save(self, run_folder) -> list[str]:

@@ -3,6 +3,8 @@ what cannot be flown (exit 2, one line saying why, nothing written under ``fligh
 a plan that flies, ``--json`` kept pure, and a campaign folder flown mission by mission."""
 
 import json
+import math
+import re
 import shutil
 
 import pandas as pd
@@ -446,6 +448,59 @@ def test_run_fly_does_not_fly_a_plan_the_tank_cannot_hold(tmp_path):
     assert "not flown: the plan needs more propellant" in result.stderr
     assert "Traceback" not in result.stderr
     assert_no_flight(folder)
+    # nor does fly, found as a user too: it flew such a folder and exited 0
+    result = cli_process("fly", str(folder))
+    assert result.returncode == 3, result.stderr
+    assert f"not flown: {folder}: not flyable with this vehicle" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert_no_flight(folder)
+
+
+def rocket_equation_propellant_kg(leg_dv, dry, kit, isp, g0=9.80665):
+    """Propellant of legs flown from the first debris (its kit left there), ending dry,
+    no operations ΔV: ``m_before = m_after exp(ΔV / (g0 Isp))``, kits dropped at each
+    debris, written again from the textbook."""
+    mass = dry
+    for dv in reversed(leg_dv):
+        mass = (mass + kit) * math.exp(dv / (g0 * isp))
+    return mass + kit - dry - (len(leg_dv) + 1) * kit
+
+
+@pytest.mark.slow
+def test_the_flight_burns_its_own_propellant_against_the_tank(tmp_path):
+    """Found as a user: a plan that fits its tank was flown at 2.4 times its ΔV and
+    called flown, its propellant never compared with the tank.  The flight's propellant
+    is the rocket equation over the ΔV flown per leg (maneuvers.csv); over the tank,
+    the flight is ``over_capacity`` and fly exits 3."""
+    vehicle = "[vehicle]\ndry_mass_kg = 800\npropellant_kg = 500\nisp_s = 300\nkit_mass_kg = 20\n"
+    scenario = sso_scenario(tmp_path, SSO_SCENARIO + vehicle)
+    folder = tmp_path / "run"
+    result = cli_process("run", str(scenario), "--fly", "--quiet", "--out", str(folder))
+    assert result.returncode == 0, result.stderr
+    flown = json.loads((folder / "flight" / "flight.json").read_text(encoding="utf-8"))
+    planned = json.loads((folder / "solution.json").read_text(encoding="utf-8"))
+    maneuvers = pd.read_csv(folder / "flight" / "maneuvers.csv")
+    per_leg = maneuvers.groupby("leg")["dv_mps"].sum().sort_index().tolist()
+    assert len(per_leg) == len(planned["legs"])
+    need = rocket_equation_propellant_kg(per_leg, 800.0, 20.0, 300.0)
+    assert flown["propellant"]["flown_kg"] == pytest.approx(need, rel=1e-9)
+    assert flown["propellant"]["planned_kg"] == pytest.approx(rocket_equation_propellant_kg(
+        [leg["dv_mps"] for leg in planned["legs"]], 800.0, 20.0, 300.0), rel=1e-9)
+    assert flown["status"] == "flown" and flown["propellant"]["fits"]
+    assert f"propellant flown {need:.1f} kg" in result.stdout
+    # the same plan, its tank between the plan's propellant and the flight's
+    tank = 0.5 * (need + flown["propellant"]["planned_kg"])
+    assert need - tank > 0.1
+    text = (folder / "scenario.toml").read_text(encoding="utf-8")
+    text, count = re.subn(r"propellant_kg = 500(\.0)?\n", f"propellant_kg = {tank}\n", text)
+    assert count == 1
+    (folder / "scenario.toml").write_text(text, encoding="utf-8")
+    result = cli_process("fly", str(folder), "--quiet")
+    assert result.returncode == 3, result.stderr
+    flown = json.loads((folder / "flight" / "flight.json").read_text(encoding="utf-8"))
+    assert flown["status"] == "over_capacity" and not flown["propellant"]["fits"]
+    assert f"the flight burns {need:.1f} kg of propellant" in result.stderr
+    assert "OVER CAPACITY" in result.stdout
 
 
 WHOLE = "catalog_2020/all_2020.tle"
