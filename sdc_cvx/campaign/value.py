@@ -461,7 +461,8 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     missions = tuple(mission_solution(launch, c, status, solver.backend)
                      for launch, c in zip(sized, found["plan"], strict=True))  # fmt: skip
     status, notes = tank_status(missions, status, found["notes"])
-    value, bound = found["value"], found["value_bound"]
+    value, bound = (None if v is None else v + 0.0  # + 0.0: never "-0"
+                    for v in (found["value"], found["value_bound"]))
     say(f"  value {value:g} (the most any campaign removes: "
         f"{'not proven' if bound is None else f'{bound:g}'}), {found['dv_mps']:.2f} m/s")
     return CampaignSolution(

@@ -140,6 +140,11 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
         fail(f"{scenario.catalog_masses}: no mass for {len(missing)} of the {len(catalog)} "
              f"candidates ({listing(missing)}): the criticality index (values = \"csi\") "
              "needs each one's mass [kg]; add them, or filter those out")  # fmt: skip
+    if campaign.values and scenario.catalog_values != CSI:
+        table = dict(campaign.values)
+        named = sum(str(k) in table for k in catalog.ids)
+        info(f"values: {named} of the {len(catalog)} candidates are named in "
+             f"{scenario.catalog_values} (the others are worth 0)")  # fmt: skip
     at_once = pricings_at_once(workers, scheduler, None, len(campaign))
     if (problem := size_problem(len(catalog), at_once)) is not None:
         fail(f"{catalog.source}: {problem}")

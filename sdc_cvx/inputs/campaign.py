@@ -343,8 +343,8 @@ class Campaign:
 
         Each mission's own check (``Mission.check_candidates``: ``catalog`` is the
         :class:`~sdc_cvx.inputs.catalog.Catalog`, or its ids), ``must_remove`` ids that
-        exist and are not excluded from every mission, and enough candidates for all the
-        missions together.
+        exist and are not excluded from every mission, enough candidates for all the
+        missions together, and values (if given) that name at least one candidate.
         """
         ids = [str(k) for k in getattr(catalog, "ids", catalog)]
         known = set(ids)
@@ -378,6 +378,12 @@ class Campaign:
                 f"remove_all: the catalog has {len(usable)} candidates but the missions remove "
                 f"{self.most_removed} at most ({self.counts_text()}): add missions or raise n"
             )
+        if self.values and known.isdisjoint(name for name, _ in self.values):
+            sample = ", ".join(repr(name) for name, _ in self.values[:3])
+            problems.append(
+                f"none of the {len(self.values)} ids of the values ({sample}, ...) is a "
+                f"candidate (such as {', '.join(map(repr, ids[:3]))}): every mission would "
+                "remove nothing of value; check the values file's id column (values_columns)")
         if problems:
             raise MissionError("; ".join(problems))
 

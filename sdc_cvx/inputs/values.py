@@ -27,9 +27,9 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
     Raises
     ------
     CatalogError
-        The file cannot be read, has no ``id`` and ``value`` columns, or a row whose id
-        is blank or repeated or whose value is not a number >= 0 (every such row named,
-        with its line).
+        The file cannot be read, has no ``id`` and ``value`` columns or no rows, or a
+        row whose id is blank or repeated or whose value is not a number >= 0 (every such
+        row named, with its line).
     """
     path = Path(path)
     source = str(path)
@@ -75,4 +75,7 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
         values[ident] = value
     if problems:
         raise CatalogError.collect(source, problems)
+    if not values:
+        raise CatalogError(f"{source}: no rows under the header: a {what} file names each "
+                           f"debris with its {value_name}")  # fmt: skip
     return values

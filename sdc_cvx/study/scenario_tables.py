@@ -214,6 +214,11 @@ def scenario_fields(data: Mapping, where: str, *, base: Path) -> dict:
     campaign = None
     if "campaign" in tables and mission is not None:
         campaign = _campaign(tables["campaign"], mission, problems, values)
+        if (values_path is not None and campaign is not None
+                and campaign.objective == "min-dv"):  # fmt: skip
+            problems.append("catalog.values is for objective = 'max-value' or 'value-per-dv' "
+                            "(the campaign's objective is 'min-dv', which removes n debris "
+                            "per mission whatever their value)")  # fmt: skip
     elif values_path is not None:
         problems.append("catalog.values is for a campaign with objective = 'max-value' "
                         "([campaign] table)")  # fmt: skip

@@ -226,6 +226,29 @@ def test_max_value_options_are_checked():
         Campaign.of([0.0], Mission(n=3), dv_budget_mps=100)
 
 
+def test_values_that_name_no_candidate_are_refused():
+    """Found as a user: a ranking read by its rank column instead of its NORAD ids named
+    no candidate, and the campaign removed a value of 0 as if it were an answer."""
+    from sdc_cvx import MissionError
+
+    ranked = Campaign.of([0.0], Mission(n=2), objective="max-value", dv_budget_mps=100,
+                         values={"1": 5.0, "2": 3.0})  # fmt: skip
+    with pytest.raises(MissionError, match="none of the 2 ids of the values .* is a candidate"):
+        ranked.check_candidates(["16182", "17590", "17974"])
+    ranked.check_candidates(["16182", "2"])  # one named is enough: the others are worth 0
+
+
+def test_values_with_a_least_dv_campaign_are_refused(tmp_path):
+    """Found as a user: [catalog] values beside a min-dv campaign were silently unused."""
+    from sdc_cvx.study.scenario import Scenario, ScenarioError
+
+    (tmp_path / "values.csv").write_text("id,value\n1,2\n")
+    (tmp_path / "s.toml").write_text('[catalog]\nvalues = "values.csv"\n'
+                                     "[campaign]\nlaunch_days = [0.0, 100.0]\nn = 2\n")
+    with pytest.raises(ScenarioError, match="catalog.values is for objective = 'max-value'"):
+        Scenario.load(tmp_path / "s.toml")
+
+
 @pytest.mark.slow
 def test_a_max_value_scenario_runs_from_the_command_line(tmp_path):
     """[catalog] values (a ranking with its own column names) and [campaign] objective,

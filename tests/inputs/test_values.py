@@ -33,3 +33,12 @@ def test_a_file_without_the_columns_says_which_it_has(tmp_path):
         read_values(path)
     with pytest.raises(CatalogError, match="cannot read the values file"):
         read_values(tmp_path / "missing.csv")
+
+
+def test_a_header_alone_is_refused(tmp_path):
+    """Found as a user: a values file with no rows made every debris worth 1 (the
+    campaign's rule without values), the opposite of "not named: worth 0"."""
+    path = tmp_path / "values.csv"
+    path.write_text("id,value\n\n")
+    with pytest.raises(CatalogError, match="values.csv: no rows under the header"):
+        read_values(path)
