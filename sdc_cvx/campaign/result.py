@@ -223,7 +223,7 @@ class CampaignSolution:
 
     def history_frame(self) -> pd.DataFrame:
         """The bound and the plan against elapsed time, one row per step."""
-        return pd.DataFrame(list(self.history))
+        return pd.DataFrame(list(self.history), columns=HISTORY_COLUMNS)
 
     def to_dict(self) -> dict:
         """JSON-ready dict: the keys of ``campaign.json``."""
@@ -258,6 +258,7 @@ class CampaignSolution:
             "pricings": self.pricings,
             "seconds": self.seconds,
             "history": [_finite(row) for row in self.history],
+            "pareto": [_finite(row) for row in self.pareto],
             "notes": list(self.notes),
         }
 
@@ -280,6 +281,8 @@ class CampaignSolution:
         return campaign_figures(self)
 
 
+HISTORY_COLUMNS = ("step", "seconds", "lower_mps", "upper_mps", "lp_mps", "columns", "pricings")
+"""The columns of ``history.csv`` (each step's bound, plan, LP, pool and pricings)."""
 TANK_COLUMNS = ("propellant_needed_kg", "capacity_kg", "margin_kg", "fits")
 """The vehicle's columns of ``missions.csv`` (from each mission's ``vehicle`` block)."""
 

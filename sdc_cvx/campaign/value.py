@@ -344,7 +344,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                 value_bound=value_bound if price is None and np.isfinite(value_bound)
                 else None, dv_mps=dv, pricings=priced,
                 dv_bound_mps=dv_bound if complete else None, status=status,
-                columns=len(columns), notes=tuple(notes),
+                columns=len(columns), notes=tuple(notes), complete=complete,
                 pool=(columns, undecided, values))  # fmt: skip
 
 
@@ -366,7 +366,7 @@ def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline
         search = shared_out(catalog, campaign, ids, solver, gap, _share(FORCED_SHARE, deadline),
                             run, stop)  # fmt: skip
     except SdcError as err:
-        say(f"  none ({err}): every mission within budget, then")
+        say(f"  none ({err}): every mission within budget is enumerated next")
         return None
     plan = in_catalog(search, catalog, ids)
     over = [c for c in plan if c.dv_mps > campaign.dv_budget_mps[c.launch] * (1 + 1e-12)
@@ -375,11 +375,11 @@ def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline
     allowed = max(gap * dv, OPTIMAL_GAP_MPS * len(launches))
     if over or dv - dv_bound > allowed * (1 + 1e-9):
         say(f"  {'a mission over its budget' if over else 'its ΔV not proven'}: every "
-            "mission within budget, then")  # fmt: skip
+            "mission within budget is enumerated next")  # fmt: skip
         return None
     return dict(plan=plan, launches=launches, value=plane.value, value_bound=plane.value,
                 dv_mps=dv, pricings=search.pricings, dv_bound_mps=dv_bound,
-                status=RunStatus.OPTIMAL, columns=len(search.pool),
+                status=RunStatus.OPTIMAL, columns=len(search.pool), complete=True,
                 notes=(f"the value bound is the plane changes' ({plane.groups} groups of debris "
                        "that may share a mission)",), pool=(plan, [], values))  # fmt: skip
 
@@ -396,14 +396,16 @@ def _priced(columns: list, values: np.ndarray, price: float, launches: int, debr
 
 
 def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: int,
-                 debris: int, points: int, *,
-                 solver: SolverOptions) -> tuple[dict, ...]:  # fmt: skip
+                 debris: int, points: int, *, solver: SolverOptions,
+                 proven: bool = True) -> tuple[dict, ...]:  # fmt: skip
     """Campaigns of value against ΔV, each the cheapest of at least a target value.
 
     The targets run evenly from the value of the cheapest campaign to the most value
     (``points`` of them; a campaign met twice is kept once).  Each point's ``dv_bound_mps``
     is the same program over every path at its bound: no campaign of at least that value
-    costs less (the ε-constraint method: every point is on the front, within the bound).
+    costs less (the ε-constraint method: every point is on the front, within the bound);
+    None for every point unless ``proven`` (the enumeration of the missions within budget
+    was complete: else a mission it missed might make a campaign cheaper).
     """
     everything = columns + undecided
     worth = _worth(columns, values)
@@ -418,8 +420,8 @@ def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: i
     for target in np.linspace(least, most, max(points, 2)):
         hold = target - VALUE_TOL * max(1.0, abs(target))
         plan = solve_ip(columns, launches, debris, solver=solver, at_least=(worth, hold))
-        floor = solve_ip(everything, launches, debris, solver=solver, costs=lows,
-                         at_least=(worth_all, hold))  # fmt: skip
+        floor = None if not proven else solve_ip(everything, launches, debris, solver=solver,
+                                                 costs=lows, at_least=(worth_all, hold))
         if plan is None or plan.chosen in seen:
             continue
         seen.add(plan.chosen)
@@ -446,12 +448,15 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     if pareto and found["plan"] is not None:
         columns, undecided, values = found["pool"]
         front = pareto_front(columns, undecided, values, len(campaign), len(catalog), pareto,
-                             solver=solver)  # fmt: skip
+                             solver=solver, proven=found["complete"])  # fmt: skip
         catalog_ids = catalog.ids
         front = tuple(row | {"missions": [[catalog_ids[i] for i in path if i < len(catalog_ids)]
                                           for path in row["missions"]]}
                       for row in front)  # fmt: skip
         say(f"  value against ΔV: {len(front)} campaigns of the front")
+        if not found["complete"]:
+            found["notes"] += ("the front's ΔV bounds are not proven (a limit stopped the "
+                               "enumeration of the missions within budget)",)
     if found["plan"] is None:
         why = found["notes"][0]
         raise SolverFailure(why if why.startswith("no campaign") else f"{why}: allow more time")
@@ -471,4 +476,7 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         greedy=GreedyCampaign(None, why="not computed for objective = 'max-value'"),
         columns=found["columns"], pricings=found["pricings"],
         seconds=time.perf_counter() - clock, notes=notes, gap_requested=gap,
+        history=(dict(step="the most value, its least ΔV", seconds=time.perf_counter() - clock,
+                      lower_mps=found["dv_bound_mps"], upper_mps=found["dv_mps"], lp_mps=None,
+                      columns=found["columns"], pricings=found["pricings"]),),
         value=value, value_bound=bound, pareto=front)  # fmt: skip

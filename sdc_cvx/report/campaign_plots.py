@@ -229,13 +229,16 @@ def plot_pareto(solution) -> Figure:
                       for row in rows])  # fmt: skip
     ax.step(dv, value, where="post", color="#888888", linewidth=1)
     ax.plot(dv, value, "o", color=_color(0), label="campaign: the least ΔV of its value")
-    ax.plot(bound, value, "|", color="#444444", markersize=10,
-            label="bound: no campaign of that value costs less")  # fmt: skip
+    if np.isfinite(bound).any():  # none where a limit stopped the enumeration
+        ax.plot(bound, value, "|", color="#444444", markersize=10,
+                label="bound: no campaign of that value costs less")  # fmt: skip
     ax.plot([solution.total_dv_mps], [solution.value], "o", markersize=14, markerfacecolor="none",
             markeredgecolor="#d62728", label="chosen: the most value")  # fmt: skip
     ax.set_xlabel("campaign ΔV [m/s]")
     ax.set_ylabel("value removed")
-    ax.set_title(f"Value against ΔV: {len(rows)} campaigns, each mission within its budget")
+    proven = "" if np.isfinite(bound).any() else " (no bound: the enumeration was stopped)"
+    ax.set_title(f"Value against ΔV: {len(rows)} campaigns, each mission within its "
+                 f"budget{proven}", fontsize=10)  # fmt: skip
     ax.legend(fontsize=8, loc="lower right")
     ax.grid(alpha=0.3)
     return fig

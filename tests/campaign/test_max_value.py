@@ -311,6 +311,34 @@ def test_the_campaigns_of_value_against_dv_are_the_brute_forces_front():
         solve_campaign(case.catalog(), Campaign.of([0.0], Mission(n=2)), pareto=3)
 
 
+def test_a_front_whose_enumeration_was_stopped_claims_no_bound(monkeypatch):
+    """Found as a user: with the enumeration of the missions within budget stopped by the
+    time limit, pareto.csv still gave each campaign a proven ΔV bound (and the figure's
+    legend said so).  Every point's bound is then unknown, and a note says why; the
+    front and the one step of a max-value search reach campaign.json and history.csv."""
+    import json
+
+    from sdc_cvx.campaign import value as module
+
+    real = module.enumerate_missions
+
+    def stopped(*args, **kwargs):  # every mission found, but told incomplete
+        columns, undecided, _ = real(*args, **kwargs)
+        return columns, undecided, False
+
+    monkeypatch.setattr(module, "enumerate_missions", stopped)
+    case = CASES[-1].values[0]
+    sol = solve_campaign(case.catalog(), case.campaign(), workers=1, pareto=5)
+    assert sol.pareto and all(row["dv_bound_mps"] is None for row in sol.pareto)
+    assert any("front's ΔV bounds are not proven" in note for note in sol.notes)
+    assert not sol.certified and sol.lower_bound_mps is None
+    saved = json.loads(sol.to_json())
+    assert len(saved["pareto"]) == len(sol.pareto)
+    assert all(row["dv_bound_mps"] is None for row in saved["pareto"])
+    history = sol.history_frame()
+    assert len(history) == 1 and history["upper_mps"].iloc[0] == pytest.approx(sol.total_dv_mps)
+
+
 @pytest.mark.slow
 def test_a_stopped_enumeration_returns_the_campaign_it_has_and_its_bound(monkeypatch):
     """A limit during the narrowed enumeration still returns the best campaign found,
