@@ -24,7 +24,8 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
 
     Every scenario is validated before any solve; each result is written as soon as it
     finishes (results.csv and one solution.json per scenario), so --resume after an
-    interruption only runs what is missing.
+    interruption only runs what is missing.  The study file's format: examples/README.md
+    ("Trade studies"); a time limit per solve is [base.solver] time_limit_s there.
     """
     from ..report.out_folder import new_folder_problem
     from ..report.run_folder import new_run_folder
@@ -71,7 +72,9 @@ def sweep_command(study_file, out_dir, workers, scheduler, resume, progress):
                          f"{folder}/results.csv; finish the others with: python -m sdc_cvx "
                          f"sweep {study_file} --resume --out {folder}")  # fmt: skip
     done = results["status"].isin(SOLVED_STATUSES)
-    click.echo(f"{int(done.sum())} of {len(results)} scenarios solved; results in "
+    over = int((results["status"] == "over_capacity").sum())
+    tank = f" ({over} over the vehicle's tank: status over_capacity)" if over else ""
+    click.echo(f"{int(done.sum())} of {len(results)} scenarios solved{tank}; results in "
                f"{folder}/results.csv")  # fmt: skip
     if len(results) and not done.any():  # nothing solved is not a success
         counts = results["status"].value_counts()

@@ -67,10 +67,18 @@ RESULT_COLUMNS = (
     "iterations",
     "seconds",
     "backend",
+    "propellant_needed_kg",
+    "capacity_kg",
+    "margin_kg",
+    "fits",
     "error",
 )
 """Columns of ``results.csv`` that come from the solve, after ``key``, ``label`` and the
-swept parameters (dotted names), and before ``scenario_sha``."""
+swept parameters (dotted names), and before ``scenario_sha``; the vehicle's
+(:data:`VEHICLE_COLUMNS`) empty without a vehicle whose propellant the plan computed."""
+VEHICLE_COLUMNS = ("propellant_needed_kg", "capacity_kg", "margin_kg", "fits")
+"""The plan's propellant against the tank (``solution.json``'s ``vehicle``): columns a
+sweep folder of an earlier version lacks, which a resume leaves empty."""
 
 
 _PANDAS_MAJOR = int(pd.__version__.split(".")[0])

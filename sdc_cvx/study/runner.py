@@ -47,6 +47,7 @@ from .results import (
     LOST,
     RESULT_COLUMNS,
     SOLVED_STATUSES,
+    VEHICLE_COLUMNS,
     _missing_to_none,
     _results_text,
     read_results,
@@ -294,7 +295,8 @@ def _previous_rows(out: Path, study: Study, planned, resume: bool) -> dict[str, 
     if previous.empty:
         return {}
     expected = {p.item.key: p for p in planned}
-    missing = [c for c in ("key", "scenario_sha", *RESULT_COLUMNS) if c not in previous]
+    missing = [c for c in ("key", "scenario_sha", *RESULT_COLUMNS)
+               if c not in previous and c not in VEHICLE_COLUMNS]  # fmt: skip
     if missing:
         raise SweepError(f"{file} is not a sweep results table (no {', '.join(missing)})")
     rows = {}
@@ -310,7 +312,7 @@ def _previous_rows(out: Path, study: Study, planned, resume: bool) -> dict[str, 
         if record["status"] == LOST:
             continue
         row = _identity(plan.item, study.parameters)
-        row.update({c: _missing_to_none(record[c]) for c in RESULT_COLUMNS})
+        row.update({c: _missing_to_none(record.get(c)) for c in RESULT_COLUMNS})
         row["scenario_sha"] = plan.sha
         rows[key] = row
     return rows

@@ -11,7 +11,7 @@ from typing import Any
 from ..errors import MissionInfeasible, SolverFailure
 from ..planner.api import solve
 from .executors import restore_malloc
-from .results import ScenarioStatus
+from .results import VEHICLE_COLUMNS, ScenarioStatus
 from .scenario import Scenario
 from .study import _flatten
 
@@ -47,6 +47,7 @@ def solve_scenario(scenario_toml: str, key: str = "") -> dict:
         "iterations": None,
         "seconds": math.nan,
         "backend": None,
+        **dict.fromkeys(VEHICLE_COLUMNS),
         "error": None,
         "solution_json": None,
         "traceback": None,
@@ -72,6 +73,8 @@ def solve_scenario(scenario_toml: str, key: str = "") -> dict:
             backend=solution.backend,
             solution_json=solution.to_json(),
         )
+        tank = solution.vehicle or {}
+        row.update({c: tank[c] for c in VEHICLE_COLUMNS if c in tank})
     except MissionInfeasible as err:
         row.update(status=ScenarioStatus.INFEASIBLE.value, error=_one_line(err))
     except SolverFailure as err:

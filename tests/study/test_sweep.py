@@ -161,6 +161,30 @@ def test_worker_applies_the_scenarios_candidate_selection():
     assert [item.scenario.selection.exclude_ids for item in study.scenarios] == [(banned,), ("1",)]
 
 
+def test_the_worker_row_has_the_plans_propellant_against_the_tank():
+    """Found as a user: a sweep of thrust against n over a 12 kg tank said "6 of 6 solved"
+    and its results.csv had no propellant column.  The row has the plan's propellant
+    (the rocket equation over its legs, here), the tank, the margin and the fit."""
+    import json
+    import math
+
+    dry, kit, isp = 800.0, 20.0, 300.0
+    scenario = Scenario.load(EXAMPLES / "paper.toml").with_overrides(
+        n=3, tmax_days=200, dry_mass_kg=dry, propellant_kg=5.0, isp_s=isp, kit_mass_kg=kit)
+    row = solve_scenario(scenario.to_toml())
+    legs = [leg["dv_mps"] for leg in json.loads(row["solution_json"])["legs"]]
+    mass = dry
+    for dv in reversed(legs):  # kits left at each debris, ending dry
+        mass = (mass + kit) * math.exp(dv / (9.80665 * isp))
+    need = mass + kit - dry - (len(legs) + 1) * kit
+    assert row["propellant_needed_kg"] == pytest.approx(need, rel=1e-9)
+    assert row["capacity_kg"] == 5.0 and row["margin_kg"] == pytest.approx(5.0 - need)
+    assert need > 5.0 and row["fits"] is False and row["status"] == "over_capacity"
+    plain = solve_scenario(Scenario.load(EXAMPLES / "paper.toml").with_overrides(
+        n=3, tmax_days=200).to_toml())  # fmt: skip
+    assert all(plain[c] is None for c in ("propellant_needed_kg", "capacity_kg", "fits"))
+
+
 # ---------------------------------------------------------------------- running
 def test_results_table_and_files(reference, study_file):
     out = Path(reference.attrs["out_dir"])
