@@ -12,12 +12,20 @@ the LP 5489 m/s, the plan 9560 m/s, 2859 columns).  The dive builds one:
    (:data:`REPAIR_ROUNDS` rounds at most);
 3. of the missions the LP holds most (:data:`CANDIDATES`), the one whose residual LP,
    once it is fixed, is least is fixed (strong diving: a look one step ahead, an LP of the
-   pool each); and so on until each launch has its mission.
+   pool each); and so on until :data:`FINISH` launches are left;
+4. those launches share out the debris left by the same search as the whole
+   (:class:`~sdc_cvx.campaign.min_dv.CampaignSearch`, over the debris left), its best
+   campaign ending the dive: the last missions of a dive cost the most, and the pool's
+   LP prices them worst.  Where that search finds none (none exists, or none in its
+   time), the last mission fixed is undone and barred, and the dive goes on
+   (:data:`BACKTRACKS` times at most).
 
 Its campaign becomes the plan if it is cheaper; the bound is untouched (the dive adds
-missions that fly, never a proof).  From a converged pool of GTOC9-all it finds 9056.50
-m/s where the plan was 9560.46 m/s, in 171-263 s; within a whole search of 1800 s it has
-found nothing cheaper so far (``docs/design.md`` §10).
+missions that fly, never a proof).  From a converged pool of GTOC9-all (2859 columns,
+the plan 9560.46 m/s) it finds 7852.95 m/s in 264 s, the last four launches' 1564.14
+m/s by step 4; without step 4 it found 9056.50 m/s, and within a whole search of 1800
+s it ended at 21 of 25 missions, the launches left without a campaign the pricing could
+find (``docs/design.md`` §10).
 
 References
 ----------
@@ -30,10 +38,14 @@ References
 
 from __future__ import annotations
 
+import dataclasses
+import time
+
 import numpy as np
 
+from ..errors import SdcError
 from .master import MasterLP, solve_lp
-from .pricing import Column
+from .pricing import Column, renumbered
 
 CANDIDATES = 8
 """Missions the LP holds most that are tried, each by its residual LP, at each step."""
@@ -43,6 +55,13 @@ REPAIR_SHARE = 0.5
 """Share of the time left that a repair's pricings may take, each from when it starts."""
 WEIGHT_TOL = 1e-6
 """An LP weight (or artificial weight) below this is 0."""
+FINISH = 4
+"""Launches left that step 4 shares out by a search of their own (as many as the SL-16
+cluster's programme: 18 debris, four missions, certified in a minute)."""
+FINISH_SHARE = 0.5
+"""Share of the time left that step 4's search may take."""
+BACKTRACKS = 3
+"""Missions undone at most, each time step 4 finds no campaign of the launches left."""
 
 
 def dive(search) -> None:
@@ -53,20 +72,49 @@ def dive(search) -> None:
     launches = len(search.launches)
     search.say("  diving on the master LP, one mission at a time")
     fixed: dict[int, Column] = {}
+    barred: set[tuple] = set()  # keys of missions undone: the launches left had none
+    order: list[int] = []  # the launches in the order their missions were fixed
+    backtracks = 0
     before = search.upper
+    # a search over a part of a campaign (regroup's window, step 4's) does not finish
+    # by a search of its own parts again
+    finishes = search.regroups
     while len(fixed) < launches:
         if search.out_of_time():
             search.notes.append(f"{search.limit_reached()} during the dive, its campaign "
                                 f"unfinished ({len(fixed)} of {launches} missions)")
             return
+        if finishes and fixed and launches - len(fixed) <= FINISH:
+            rest = _finish(search, fixed)
+            if rest is not None:
+                fixed |= {column.launch: column for column in rest}
+                search.record(f"dive (the {len(rest)} launches left shared out by their own "
+                              f"search: {sum(c.dv_mps for c in rest):.2f} m/s)")
+                break
+            if backtracks == BACKTRACKS or search.out_of_time():
+                search.notes.append(f"the dive ended with {len(fixed)} of {launches} missions "
+                                    "fixed: no campaign of the launches left was found (after "
+                                    f"{backtracks} missions undone)")  # fmt: skip
+                search.say(f"  {search.notes[-1]}")
+                return
+            backtracks += 1
+            barred.add(fixed.pop(order.pop()).key)
+            search.say(f"  dive: no campaign of the launches left; the last mission fixed "
+                       f"is undone ({backtracks} of {BACKTRACKS})")  # fmt: skip
+            continue
         lp, columns = _repaired(search, fixed)
-        if lp.artificial > WEIGHT_TOL:
+        if lp.artificial > WEIGHT_TOL and not finishes:
             search.notes.append(f"the dive ended with {len(fixed)} of {launches} missions "
                                 "fixed: no campaign of the launches left was found")
             search.say(f"  {search.notes[-1]}")
             return
-        column, value = _strongest(search, lp, columns, fixed)
+        column, value = _strongest(search, lp, columns, fixed, barred)
+        if column is None:  # every mission the LP holds is barred
+            search.notes.append(f"the dive ended with {len(fixed)} of {launches} missions "
+                                "fixed: every mission left to fix was undone before")
+            return
         fixed[column.launch] = column
+        order.append(column.launch)
         left = (f"the LP left {value:.2f} m/s" if np.isfinite(value) else
                 "the pool cannot finish it: the launches left are priced next")  # fmt: skip
         search.record(f"dive ({len(fixed)} of {launches} missions fixed, {left})",
@@ -113,15 +161,17 @@ def _repaired(search, fixed: dict[int, Column]) -> tuple[MasterLP, list[Column]]
     return lp, columns
 
 
-def _strongest(search, lp: MasterLP, columns: list[Column],
-               fixed: dict[int, Column]) -> tuple[Column, float]:  # fmt: skip
+def _strongest(search, lp: MasterLP, columns: list[Column], fixed: dict[int, Column],
+               barred=frozenset()) -> tuple[Column | None, float]:  # fmt: skip
     """Step 3: of the :data:`CANDIDATES` missions of the launches left that the LP holds
-    most, the one whose residual LP is least once it is fixed, and that LP's value
-    (``inf`` where the pool cannot finish any of them: then the most held, and the next
-    step's pricing repairs)."""
-    held = sorted((k for k, c in enumerate(columns)
-                   if c.launch not in fixed and lp.weights[k] > WEIGHT_TOL),
+    most (none whose key is ``barred``), the one whose residual LP is least once it is
+    fixed, and that LP's value (``inf`` where the pool cannot finish any of them: then
+    the most held, and the next step's pricing repairs); None where the LP holds none."""
+    held = sorted((k for k, c in enumerate(columns) if c.launch not in fixed
+                   and lp.weights[k] > WEIGHT_TOL and c.key not in barred),
                   key=lambda k: -lp.weights[k])[:CANDIDATES]  # fmt: skip
+    if not held:
+        return None, np.inf
     best, best_value = columns[held[0]], np.inf
     for k in held:
         trial = fixed | {columns[k].launch: columns[k]}
@@ -130,3 +180,33 @@ def _strongest(search, lp: MasterLP, columns: list[Column],
         if value < best_value:
             best, best_value = columns[k], value
     return best, best_value
+
+
+def _finish(search, fixed: dict[int, Column]) -> list[Column] | None:
+    """Step 4: the best campaign of the launches left over the debris left (the same
+    search, :data:`FINISH_SHARE` of the time left), as columns of the whole; None where
+    it finds none (none exists, or none in its time)."""
+    catalog, campaign = search.catalog, search.campaign
+    used = {i for column in fixed.values() for i in column.debris}
+    rows = [i for i in range(len(catalog)) if i not in used]
+    left = [k for k in range(len(search.launches)) if k not in fixed]
+    ids = [catalog.ids[i] for i in rows]
+    must = [catalog.ids[i] for i in search.must if i not in used]
+    part = campaign.removing(ids, left)
+    if len(must) < len(ids):  # not every debris left must go: those that must
+        part = dataclasses.replace(part, must_remove=tuple(must))
+    left_s = search.remaining()
+    deadline = (search.deadline if left_s is None
+                else time.perf_counter() + FINISH_SHARE * left_s)  # fmt: skip
+    try:
+        sub = type(search)(catalog.subset(ids), part, search.solver, search.gap_rel, deadline,
+                           lambda line: None, search.run, search.stop)  # fmt: skip
+        sub.regroups, sub.at_once = False, search.at_once  # no part within a part
+        sub.solve()
+    except SdcError:  # none exists, or none in its time
+        return None
+    if sub.plan is None:
+        return None
+    search.pool.add(renumbered(c, rows, len(ids), len(catalog), left)
+                    for c in sub.pool.columns)  # fmt: skip
+    return [renumbered(c, rows, len(ids), len(catalog), left) for c in sub.plan]

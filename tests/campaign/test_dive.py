@@ -54,7 +54,56 @@ def test_a_dive_after_the_column_generation_builds_the_brute_forces_optimum():
     assert best.dv_mps - 3 * GRID_TOL_MPS <= search.upper <= best.dv_mps * (1 + GAP) + 1e-3
     assert search.lower == lower  # a dive proves nothing
     dives = [h["step"] for h in search.history if h["step"].startswith("dive")]
-    assert dives[-1].startswith("dive (3 of 3 missions fixed")
+    # one mission fixed on the LP, the two launches left shared out by their own search
+    assert dives[0].startswith("dive (1 of 3 missions fixed")
+    assert dives[-1].startswith("dive (the 2 launches left shared out by their own search")
+
+
+def diving(monkeypatch, finish_fails):
+    """The dive on REPAIRED after the column generation, its step 4 failing the first
+    ``finish_fails`` times; the search, the keys of the missions fixed before each
+    failure, and the brute force's optimum."""
+    from sdc_cvx.campaign import dive as module
+
+    real, undone = module._finish, []
+
+    def finish(search, fixed):
+        if len(undone) < finish_fails:
+            undone.append(set(c.key for c in fixed.values()))
+            return None
+        return real(search, fixed)
+
+    monkeypatch.setattr(module, "_finish", finish)
+    with PricingRuns(True, None, None, 1, 1) as run:
+        search = CampaignSearch(REPAIRED.catalog(), REPAIRED.campaign(), SolverOptions(), GAP,
+                                np.inf, lambda line: None, run)  # fmt: skip
+        search.launches_alone()
+        search.generate_columns()
+        search.plan, search.upper = None, np.inf
+        dive(search)
+    return search, undone, brute(REPAIRED)
+
+
+def test_where_the_launches_left_have_no_campaign_the_last_mission_is_undone(monkeypatch):
+    """Step 4 finding no campaign: the mission fixed last is undone and barred (the next
+    one fixed is another), and the dive ends on a campaign that flies (one mission per
+    launch, every debris once), never below the brute force's optimum."""
+    search, undone, best = diving(monkeypatch, 2)
+    assert len(undone) == 2 and undone[1] != undone[0]
+    assert search.plan is not None, search.notes
+    assert sorted(i for c in search.plan for i in c.debris) == list(range(6))
+    assert [c.launch for c in search.plan] == [0, 1, 2]
+    assert search.upper >= best.dv_mps - 3 * GRID_TOL_MPS
+
+
+def test_a_dive_whose_launches_left_never_have_a_campaign_says_so(monkeypatch):
+    """Step 4 never finding one: at most :data:`BACKTRACKS` missions undone, then the dive
+    ends without a campaign and says so."""
+    from sdc_cvx.campaign.dive import BACKTRACKS
+
+    search, undone, _ = diving(monkeypatch, 99)
+    assert 1 <= len(undone) <= BACKTRACKS + 1 and search.plan is None
+    assert search.notes[-1].startswith("the dive ended with ")
 
 
 def test_a_dive_that_finds_no_campaign_keeps_the_plan_and_says_why():
@@ -66,6 +115,7 @@ def test_a_dive_that_finds_no_campaign_keeps_the_plan_and_says_why():
                             lambda line: None, lambda tasks: [])  # fmt: skip
     search.pool.add([column(0, (0, 1), 10.0), column(1, (0, 2), 10.0)])  # debris 3: none
     search.plan, search.upper = ["a campaign"], 500.0
+    search.regroups = False  # a search over a part of a campaign: no step 4 of its own
     dive(search)
     assert search.plan == ["a campaign"] and search.upper == 500.0
     assert search.notes[-1].startswith("the dive ended with 0 of 2 missions fixed")
