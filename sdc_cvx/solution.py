@@ -299,14 +299,19 @@ class Solution:
             )
         model = self.mission.transfer_model().describe()
         if len(model) > 1:  # a model with parameters (the impulsive one has none)
+            thrust = (self.vehicle or {}).get("thrust_n")
+            accel = model.get("accel_mps2")
+            why = ("" if not (thrust and accel) else f" ({thrust:g} N over {thrust / accel:.1f} "
+                   "kg: the full tank and every kit, the least acceleration flown)")
             lines.append(f"transfer  {model.pop('transfer')}"
-                         + "".join(f", {k} {v:g}" for k, v in model.items()))  # fmt: skip
+                         + "".join(f", {k} {v:g}" for k, v in model.items()) + why)  # fmt: skip
         if self.vehicle and "propellant_needed_kg" in self.vehicle:
             v = self.vehicle
             tank = ("" if v.get("capacity_kg") is None else
                     f" of {v['capacity_kg']:.1f} kg (margin {v['margin_kg']:.1f} kg)")  # fmt: skip
             lines.append(f"vehicle   propellant {v['propellant_needed_kg']:.1f} kg{tank}, wet mass "
-                         f"at launch {v['wet_mass_kg']:.1f} kg")  # fmt: skip
+                         f"at launch {v['wet_mass_kg']:.1f} kg (with the propellant the plan "
+                         "needs)")  # fmt: skip
             if v.get("long_burns"):
                 lines.append(f"warning   the burns of {len(v['long_burns'])} leg(s) are long "
                              "against their coast: the impulsive model may not hold (notes)")

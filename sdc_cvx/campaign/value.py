@@ -473,7 +473,7 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     return CampaignSolution(
         campaign=campaign, catalog=catalog, missions=missions,
         total_dv_mps=found["dv_mps"], lower_bound_mps=found["dv_bound_mps"], status=status,
-        greedy=GreedyCampaign(None, why="not computed for objective = 'max-value'"),
+        greedy=GreedyCampaign(None, why=f"not computed for objective = {campaign.objective!r}"),
         columns=found["columns"], pricings=found["pricings"],
         seconds=time.perf_counter() - clock, notes=notes, gap_requested=gap,
         history=(dict(step="the most value, its least ΔV", seconds=time.perf_counter() - clock,

@@ -55,6 +55,7 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
             click.echo(line, err=True)
 
     unflown = []  # (folder, status) of each flight not flown as planned
+    flights = []
     try:
         with _flying(folder):
             plans = run_folder_plans(folder, catalog_path)
@@ -71,6 +72,7 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
                     click.echo(f"warning: {note}", err=True)
                 flight = fly(plan, force=force_model, progress=progress)
                 flight.save(sub)
+                flights.append(flight)
                 click.echo(flight.summary(), err=not stdout)
                 click.echo(f"results   {sub / 'flight'}/", err=not stdout)
                 if (said := flight.warning()) is not None:
@@ -86,6 +88,12 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
         fail(f"interrupted while flying: {kept}", INTERRUPTED)
     except OSError as err:
         fail(f"cannot write {folder}/flight: {err.strerror or err}", SOLVER_FAILED)
+    if len(plans) > 1 and flights:  # a campaign: its totals, over the missions flown
+        planned = sum(f.planned_dv_flown_mps for f in flights)
+        flown = sum(f.flown_dv_mps for f in flights)
+        click.echo(f"campaign  plan {planned:.2f} m/s, flown {flown:.2f} m/s "
+                   f"({100 * (flown / planned - 1):+.2f} %) over the {len(flights)} of "
+                   f"{len(plans)} missions flown", err=not stdout)  # fmt: skip
     if unflown:  # written, but never called flown: a script must not carry on
         which = ", ".join(f"{sub} {status}" for sub, status in unflown)
         fail(f"{len(unflown)} of {len(plans)} plan(s) not flown as planned ({which}); "

@@ -176,7 +176,8 @@ class Campaign:
         if self.objective == "min-dv":
             for name in ("dv_budget_mps", "values", "price_per_value_mps"):
                 if getattr(self, name):
-                    yield f"{name} are for objective = 'max-value' (min-dv removes n per mission)"
+                    yield (f"{name} are for objective = 'max-value' or 'value-per-dv' (min-dv "
+                           "removes n per mission)")  # fmt: skip
             return
         price = self.price_per_value_mps
         if self.objective == "value-per-dv" and not (_is_real(price) and np.isfinite(price)

@@ -386,6 +386,12 @@ def test_a_campaign_folder_is_flown_mission_by_mission(tmp_path):
                                       .read_text(encoding="utf-8"))["start"])
               for e in missions]  # fmt: skip
     assert starts[1] - starts[0] == pd.Timedelta(days=90)
+    # the campaign's totals: the missions' flight.json added up
+    flown = [json.loads((folder / e["folder"] / "flight" / "flight.json")
+                        .read_text(encoding="utf-8")) for e in missions]  # fmt: skip
+    planned, total = sum(f["plan_dv_mps"] for f in flown), sum(f["flown_dv_mps"] for f in flown)
+    assert lines[-1].startswith(f"campaign  plan {planned:.2f} m/s, flown {total:.2f} m/s")
+    assert lines[-1].endswith("over the 2 of 2 missions flown")
 
 
 def with_raan_moved(text: str, norad: str, degrees: float) -> str:
