@@ -87,7 +87,7 @@ def run_programme(name: str, time_limit: float, workers: int, dask: bool, queue)
                    dv=solution.total_dv_mps,
                    bound=solution.lower_bound_mps, gap=solution.gap_rel,
                    status=str(solution.status), greedy=solution.greedy.dv_mps,
-                   seconds=seconds, peak_mb=peak_mb()))  # fmt: skip
+                   seconds=seconds, peak_mb=peak_mb(), notes=list(solution.notes)))  # fmt: skip
 
 
 def main() -> None:
@@ -134,6 +134,8 @@ def main() -> None:
             print(f"{name:11} {label:10} {r['N']:4d} {r['K']:3d} {r['removed']:7d} {value:>8} "
                   f"{r['dv']:9.2f} {bound:>9} {gap:>7} {r['status']:>9} {greedy:>9} "
                   f"{r['seconds']:8.1f} {r['peak_mb']:8.0f} {most:>12}", flush=True)  # fmt: skip
+            for note in r["notes"]:  # why a search stopped where it did
+                print(f"{'':11} note: {note}", flush=True)
 
 
 if __name__ == "__main__":
