@@ -119,3 +119,30 @@ def test_a_dive_that_finds_no_campaign_keeps_the_plan_and_says_why():
     dive(search)
     assert search.plan == ["a campaign"] and search.upper == 500.0
     assert search.notes[-1].startswith("the dive ended with 0 of 2 missions fixed")
+
+
+def test_the_dives_repeat_each_from_another_first_mission(monkeypatch):
+    """``dive`` repeats (at most DIVES times, here with no time limit): each dive's first
+    mission is barred from the next ones' first step, and every campaign it keeps flies."""
+    from sdc_cvx.campaign import dive as module
+
+    real, seen = module._dive_once, []
+
+    def once(search, firsts):
+        seen.append(set(firsts))
+        first = real(search, firsts)
+        assert first is None or first not in seen[-1]
+        return first
+
+    monkeypatch.setattr(module, "_dive_once", once)
+    with PricingRuns(True, None, None, 1, 1) as run:
+        search = CampaignSearch(REPAIRED.catalog(), REPAIRED.campaign(), SolverOptions(), GAP,
+                                np.inf, lambda line: None, run)  # fmt: skip
+        search.launches_alone()
+        search.generate_columns()
+        search.plan, search.upper = None, np.inf
+        dive(search)
+    assert 2 <= len(seen) <= module.DIVES
+    assert seen[0] == set() and all(len(b) == k for k, b in enumerate(seen))
+    assert search.plan is not None
+    assert sorted(i for c in search.plan for i in c.debris) == list(range(6))
