@@ -9,6 +9,7 @@ import pandas as pd
 
 from ..inputs.campaign import Campaign
 from ..inputs.catalog import Catalog
+from ..inputs.vehicle import TANK_KEYS
 from ..solution import RunStatus, Solution
 
 
@@ -213,7 +214,7 @@ class CampaignSolution:
                 "duration_days": mission.total_duration_days,
                 "end_day": day + mission.total_duration_days,
                 "tmax_days": mission.mission.tmax_days, "folder": mission_folder(k),
-            } | {key: tank[key] for key in TANK_COLUMNS if key in tank})  # fmt: skip
+            } | {key: tank[key] for key in TANK_KEYS if key in tank})  # fmt: skip
         return pd.DataFrame(rows)
 
     def pareto_frame(self) -> pd.DataFrame:
@@ -283,8 +284,6 @@ class CampaignSolution:
 
 HISTORY_COLUMNS = ("step", "seconds", "lower_mps", "upper_mps", "lp_mps", "columns", "pricings")
 """The columns of ``history.csv`` (each step's bound, plan, LP, pool and pricings)."""
-TANK_COLUMNS = ("propellant_needed_kg", "capacity_kg", "margin_kg", "fits")
-"""The vehicle's columns of ``missions.csv`` (from each mission's ``vehicle`` block)."""
 
 
 def tank_status(missions, status: RunStatus, notes) -> tuple[RunStatus, tuple[str, ...]]:

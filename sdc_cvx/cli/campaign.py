@@ -19,7 +19,6 @@ from ..errors import (
     SweepError,
     listing,
 )
-from ..solution import RunStatus
 from .budget import MISSION_FOLDER_S, search_limit
 from .exits import (
     INFEASIBLE,
@@ -231,6 +230,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
             info(line)
     else:
         click.echo("\n".join(lines))
+    from ..solution import RunStatus  # pandas: not at --help
+
     if solution.status == RunStatus.OVER_CAPACITY:  # written, but never called flyable
         fail(f"{solution.notes[-1]} (campaign folder {folder})", INFEASIBLE)
     if not solution.certified:

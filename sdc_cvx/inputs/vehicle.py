@@ -110,6 +110,11 @@ class Vehicle:
         return {k: v for k, v in dataclasses.asdict(self).items() if v is not None}
 
 
+TANK_KEYS = ("propellant_needed_kg", "capacity_kg", "margin_kg", "fits")
+"""The keys of a plan's ``vehicle`` block that say how it stands against its tank [kg]
+(the columns a campaign's ``missions.csv`` and a sweep's ``results.csv`` take from it)."""
+
+
 class PropellantBudget(NamedTuple):
     """Masses along a plan (:func:`propellant_budget`).
 

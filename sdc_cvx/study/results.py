@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import pandas as pd
 
+from ..inputs.vehicle import TANK_KEYS
 from ..report.run_folder import CSV_FLOAT_FORMAT
 from ..solution import RunStatus
 
@@ -67,16 +68,13 @@ RESULT_COLUMNS = (
     "iterations",
     "seconds",
     "backend",
-    "propellant_needed_kg",
-    "capacity_kg",
-    "margin_kg",
-    "fits",
+    *TANK_KEYS,
     "error",
 )
 """Columns of ``results.csv`` that come from the solve, after ``key``, ``label`` and the
 swept parameters (dotted names), and before ``scenario_sha``; the vehicle's
 (:data:`VEHICLE_COLUMNS`) empty without a vehicle whose propellant the plan computed."""
-VEHICLE_COLUMNS = ("propellant_needed_kg", "capacity_kg", "margin_kg", "fits")
+VEHICLE_COLUMNS = TANK_KEYS
 """The plan's propellant against the tank (``solution.json``'s ``vehicle``): columns a
 sweep folder of an earlier version lacks, which a resume leaves empty."""
 
