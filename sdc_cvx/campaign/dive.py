@@ -11,8 +11,9 @@ the LP 5489 m/s, the plan 9560 m/s, 2859 columns).  The dive builds one:
    launches left are priced at its prices, the fixed debris left out, until it does not
    (:data:`REPAIR_ROUNDS` rounds at most);
 3. of the missions the LP holds most (:data:`CANDIDATES`), the one whose residual LP,
-   once it is fixed, is least is fixed (strong diving: a look one step ahead, an LP of the
-   pool each); and so on until :data:`FINISH` launches are left;
+   once it is fixed, is least (its artificial columns at their cost: the least repair
+   first) is fixed (strong diving: a look one step ahead, an LP of the pool each); and
+   so on until :data:`FINISH` launches are left;
 4. those launches share out the debris left by the same search as the whole
    (:class:`~sdc_cvx.campaign.min_dv.CampaignSearch`, over the debris left), its best
    campaign ending the dive: the last missions of a dive cost the most, and the pool's
