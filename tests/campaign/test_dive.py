@@ -74,6 +74,11 @@ def diving(monkeypatch, finish_fails):
         return real(search, fixed)
 
     monkeypatch.setattr(module, "_finish", finish)
+    return dived_after_the_rounds(), undone, brute(REPAIRED)
+
+
+def dived_after_the_rounds():
+    """REPAIRED's search after its column generation, dived from no plan."""
     with PricingRuns(True, None, None, 1, 1) as run:
         search = CampaignSearch(REPAIRED.catalog(), REPAIRED.campaign(), SolverOptions(), GAP,
                                 np.inf, lambda line: None, run)  # fmt: skip
@@ -81,7 +86,7 @@ def diving(monkeypatch, finish_fails):
         search.generate_columns()
         search.plan, search.upper = None, np.inf
         dive(search)
-    return search, undone, brute(REPAIRED)
+    return search
 
 
 def test_where_the_launches_left_have_no_campaign_the_last_mission_is_undone(monkeypatch):
@@ -135,13 +140,7 @@ def test_the_dives_repeat_each_from_another_first_mission(monkeypatch):
         return first
 
     monkeypatch.setattr(module, "_dive_once", once)
-    with PricingRuns(True, None, None, 1, 1) as run:
-        search = CampaignSearch(REPAIRED.catalog(), REPAIRED.campaign(), SolverOptions(), GAP,
-                                np.inf, lambda line: None, run)  # fmt: skip
-        search.launches_alone()
-        search.generate_columns()
-        search.plan, search.upper = None, np.inf
-        dive(search)
+    search = dived_after_the_rounds()
     assert 2 <= len(seen) <= module.DIVES
     assert seen[0] == set() and all(len(b) == k for k, b in enumerate(seen))
     assert search.plan is not None
