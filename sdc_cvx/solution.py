@@ -94,7 +94,8 @@ class Leg:
     of the coast beyond the first that closes the RAAN gap); empty for impulsive legs."""
     masses: dict = field(default_factory=dict)
     """With a vehicle's dry mass and Isp: ``propellant_kg`` burned by the leg and the
-    vehicle's ``mass_before_kg`` and ``mass_after_kg`` [kg]; else empty."""
+    vehicle's ``mass_before_kg`` and ``mass_after_kg`` [kg]; an impulsive leg's ``burn_s``
+    [s] with the vehicle's thrust or acceleration; else empty."""
 
     def to_dict(self) -> dict:
         out = asdict(self)

@@ -158,9 +158,13 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
         **selection_overrides(altitude_km, inclination_deg, max_eccentricity, ids, exclude_ids,
                               names, types, strict),
     )  # fmt: skip
-    if accel_mps2 is not None and scenario.mission.transfer != "low-thrust":
-        click.echo("warning: --accel is a low-thrust vehicle's: the impulsive model plans "
-                   "without it (add --transfer low-thrust)", err=True)  # fmt: skip
+    vehicle = scenario.mission.vehicle
+    if (vehicle is not None and vehicle.accel_mps2 is not None
+            and scenario.mission.transfer != "low-thrust"):  # fmt: skip
+        given = "--accel" if accel_mps2 is not None else f"{scenario_file}'s vehicle.accel_mps2"
+        click.echo(f"warning: {given} is a low-thrust vehicle's: the impulsive model plans "
+                   "without it and only checks that its burns are short against the legs "
+                   "(--transfer low-thrust plans with it)", err=True)  # fmt: skip
     if force_model is not None and not fly_plan:
         click.echo("warning: --force-model is --fly's: no flight without --fly", err=True)
     force_model = force_model or "j2"

@@ -249,6 +249,11 @@ class Mission:
             if missing:
                 yield ("transfer = 'low-thrust' needs the vehicle's acceleration: missing "
                        + ", ".join(missing))  # fmt: skip
+            else:
+                try:
+                    self.transfer_model()
+                except ValueError as err:  # an acceleration the model does not hold for
+                    yield f"transfer = 'low-thrust': {err}"
 
     def transfer_model(self) -> TransferModel:
         """The transfer model of the mission, with the vehicle's acceleration."""

@@ -30,6 +30,12 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
         The file cannot be read, has no ``id`` and ``value`` columns or no rows, or a
         row whose id is blank or repeated or whose value is not a number >= 0 (every such
         row named, with its line).
+
+    Notes
+    -----
+    The fields are separated by commas, or by semicolons or tabs where the header has no
+    comma (a spreadsheet's export in a locale whose decimal mark is the comma; the values
+    still take a decimal point).
     """
     path = Path(path)
     source = str(path)
@@ -38,7 +44,8 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
     except (OSError, UnicodeDecodeError) as err:
         raise CatalogError(f"{source}: cannot read the {what} file: "
                            f"{getattr(err, 'strerror', None) or err}") from None  # fmt: skip
-    rows = csv.reader(text.splitlines())
+    lines = text.splitlines()
+    rows = csv.reader(lines, delimiter=_delimiter(lines[0] if lines else ""))
     header = [name.strip().lower() for name in next(rows, [])]
     id_name, value_name = (name.strip().lower() for name in columns)
     if id_name not in header or value_name not in header:
@@ -79,3 +86,10 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
         raise CatalogError(f"{source}: no rows under the header: a {what} file names each "
                            f"debris with its {value_name}")  # fmt: skip
     return values
+
+
+def _delimiter(header: str) -> str:
+    """The header's field separator: a comma, else a semicolon or a tab if it has one."""
+    if "," in header:
+        return ","
+    return next((mark for mark in ";\t" if mark in header), ",")

@@ -383,6 +383,14 @@ def edelbaum_transfer(v_from, v_to, plane_change, accel):
     return dv, dv / accel
 
 
+MAX_ACCEL_MPS2 = 1e-2
+"""The highest thrust acceleration the model takes [m/s^2].  Its phases average the thrust
+over revolutions (quasi-circular spirals, the plane change switched at the antinodes); at
+1e-2 m/s^2 a vehicle gains 60 m/s a revolution at 800 km, so a phase of a few tens of m/s
+lasts less than one and is an impulse, which the impulsive model plans better.  Electric
+propulsion is 1e-5 to 1e-3 m/s^2; chemical thrusters 1e-2 and up."""
+
+
 @dataclass(frozen=True)
 class LowThrustModel:
     """The low-thrust drift leg (:mod:`~sdc_cvx.physics.low_thrust`) as a transfer model.
@@ -402,6 +410,12 @@ class LowThrustModel:
     def __post_init__(self):
         if not (np.isfinite(self.accel_mps2) and self.accel_mps2 > 0):
             raise ValueError(f"accel_mps2 must be a positive number, got {self.accel_mps2!r}")
+        if self.accel_mps2 > MAX_ACCEL_MPS2:
+            raise ValueError(
+                f"a thrust acceleration of {self.accel_mps2:g} m/s^2 is not low thrust: the "
+                f"low-thrust model averages the thrust over revolutions and holds up to "
+                f"{MAX_ACCEL_MPS2:g} m/s^2 (60 m/s a revolution at 800 km): above that, the "
+                "burns are short against an orbit: use the impulsive model")  # fmt: skip
 
     def leg_dv(self, origin_a, origin_inc, target_a, target_inc, a_drift, inc_drift=None, *,
                mu=MU_EARTH):  # fmt: skip

@@ -137,8 +137,8 @@ def with_vehicle(legs: tuple[Leg, ...], nodes: MissionNodes, path, mission: Miss
     (:func:`~sdc_cvx.inputs.vehicle.propellant_budget`, the operations' ΔV at each debris
     included); a plan that needs more than the tank holds gets the status
     ``over_capacity`` and a note: it is never reported as flyable.  An impulsive plan
-    with the vehicle's thrust gets each leg's burn time (``burn_s``) and a note on any leg
-    whose burns last more than :data:`LONG_BURN` of it.
+    with the vehicle's thrust or acceleration gets each leg's burn time (``burn_s``) and a
+    note on any leg whose burns last more than :data:`LONG_BURN` of it.
     """
     vehicle = mission.vehicle
     if vehicle is None:
@@ -147,34 +147,38 @@ def with_vehicle(legs: tuple[Leg, ...], nodes: MissionNodes, path, mission: Miss
     model = mission.transfer_model().describe()
     if "accel_mps2" in model:
         block["accel_mps2_flown"] = model["accel_mps2"]
-    if not vehicle.can_budget():
-        return legs, block, status, []
-    path = [int(k) for k in path]
-    budget = propellant_budget(vehicle, [leg.dv_mps for leg in legs], nodes.cost_mps[path],
-                               kit_at_start=mission.injection is None)  # fmt: skip
-    masses = [{"propellant_kg": budget.propellant_kg[k], "mass_before_kg": budget.mass_before_kg[k],
-               "mass_after_kg": budget.mass_after_kg[k]} for k in range(len(legs))]  # fmt: skip
+    budget = None
+    if vehicle.can_budget():
+        budget = propellant_budget(vehicle, [leg.dv_mps for leg in legs],
+                                   nodes.cost_mps[[int(k) for k in path]],
+                                   kit_at_start=mission.injection is None)  # fmt: skip
+    burns = _burn_seconds(legs, vehicle, mission, budget)
+    masses = [{} for _ in legs]
     notes = []
-    if mission.transfer == "impulsive" and vehicle.thrust_n is not None:
+    if budget is not None:
+        for k, leg_masses in enumerate(masses):
+            leg_masses |= {"propellant_kg": budget.propellant_kg[k],
+                           "mass_before_kg": budget.mass_before_kg[k],
+                           "mass_after_kg": budget.mass_after_kg[k]}  # fmt: skip
+    if burns is not None:
         # the paper's condition for impulses (Part IV-D): burns short against the coast
-        exhaust = G0 * float(vehicle.isp_s)
+        block["long_burns"] = []
         for k, leg in enumerate(legs):
-            masses[k]["burn_s"] = budget.propellant_kg[k] * exhaust / float(vehicle.thrust_n)
-            if masses[k]["burn_s"] > LONG_BURN * leg.duration_days * SECONDS_PER_DAY:
+            masses[k]["burn_s"] = burns[k]
+            if burns[k] > LONG_BURN * leg.duration_days * SECONDS_PER_DAY:
+                block["long_burns"].append(k)
                 notes.append(
-                    f"leg {leg.from_id} -> {leg.to_id}: its burns last "
-                    f"{masses[k]['burn_s'] / 3600:.1f} h, more than {100 * LONG_BURN:g} % of "
-                    f"its {leg.duration_days:.1f} days: the impulsive model may not hold "
-                    "(transfer = 'low-thrust' models such a vehicle)")  # fmt: skip
+                    f"leg {leg.from_id} -> {leg.to_id}: its burns last {burns[k] / 3600:.1f} h, "
+                    f"more than {100 * LONG_BURN:g} % of its {leg.duration_days:.1f} days: the "
+                    "impulsive model may not hold (transfer = 'low-thrust' models such a "
+                    "vehicle)")  # fmt: skip
     legs = tuple(replace(leg, masses=masses[k]) for k, leg in enumerate(legs))
+    if budget is None:
+        return legs, block, status, notes
     block |= {"propellant_needed_kg": budget.needed_kg, "operations_propellant_kg":
               budget.operations_kg, "wet_mass_kg": budget.wet_mass_kg,
               "capacity_kg": budget.capacity_kg, "margin_kg": budget.margin_kg,
               "fits": budget.fits}  # fmt: skip
-    if "burn_s" in masses[0]:
-        block["long_burns"] = [k for k, leg in enumerate(legs)
-                               if leg.masses["burn_s"] > LONG_BURN * leg.duration_days
-                               * SECONDS_PER_DAY]  # fmt: skip
     if not budget.fits:
         status = RunStatus.OVER_CAPACITY
         notes.append(
@@ -183,3 +187,17 @@ def with_vehicle(legs: tuple[Leg, ...], nodes: MissionNodes, path, mission: Miss
             "of more ΔV spent later, on a lighter vehicle, might need less and is not searched)"
         )
     return legs, block, status, notes
+
+
+def _burn_seconds(legs, vehicle, mission: Mission, budget) -> list[float] | None:
+    """Each impulsive leg's burn time [s]: its ΔV over the vehicle's acceleration when it
+    gives one, else its propellant at the exhaust speed over the thrust; None for a
+    low-thrust plan (its phases are its burns) or without either."""
+    if mission.transfer != "impulsive":
+        return None
+    if vehicle.accel_mps2 is not None:
+        return [leg.dv_mps / float(vehicle.accel_mps2) for leg in legs]
+    if vehicle.thrust_n is not None and budget is not None:
+        exhaust = G0 * float(vehicle.isp_s)
+        return [float(p) * exhaust / float(vehicle.thrust_n) for p in budget.propellant_kg]
+    return None

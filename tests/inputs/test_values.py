@@ -42,3 +42,16 @@ def test_a_header_alone_is_refused(tmp_path):
     path.write_text("id,value\n\n")
     with pytest.raises(CatalogError, match="values.csv: no rows under the header"):
         read_values(path)
+
+
+@pytest.mark.parametrize("mark", [";", "\t"])
+def test_a_spreadsheets_export_with_semicolons_or_tabs_is_read(tmp_path, mark):
+    """Found as a user: a values CSV exported with ';' (a locale whose decimal mark is the
+    comma) was refused for want of the columns 'id' and 'value'."""
+    path = tmp_path / "values.csv"
+    path.write_text(f"id{mark}value\n22566{mark}4048.5\n22220{mark}3710\n")
+    assert read_values(path) == {"22566": 4048.5, "22220": 3710.0}
+    path.write_text(f"id{mark}value\n22566{mark}4048,5\n")  # a decimal comma: named
+    with pytest.raises(CatalogError, match="line 2, field value: expected a number >= 0, "
+                       "got '4048,5'"):  # fmt: skip
+        read_values(path)

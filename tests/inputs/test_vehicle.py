@@ -99,6 +99,40 @@ def test_the_vehicle_table_reads_back_from_the_scenario_as_used(tmp_path):
     assert "needs the vehicle's acceleration" not in str(refused.value)
 
 
+
+@pytest.mark.parametrize("vehicle", [{"accel_mps2": 0.05},
+                                     {"thrust_n": 100.0, "dry_mass_kg": 800.0,
+                                      "propellant_kg": 200.0}])  # fmt: skip
+def test_an_acceleration_that_is_not_low_thrust_is_refused(vehicle):
+    """Found as a user: accel_mps2 = 100 was planned as low thrust.  0.05 m/s^2 gains 300 m/s
+    a revolution at 800 km (period 6052 s): a leg's phases would be shorter than an orbit,
+    which the model averages over; the thrust of 100 N on one tonne is 0.1 m/s^2."""
+    with pytest.raises(MissionError, match="is not low thrust.*use the impulsive model"):
+        Mission(n=3, transfer="low-thrust", vehicle=vehicle)
+    Mission(n=3, transfer="low-thrust", vehicle={"accel_mps2": 1e-3})  # electric: accepted
+
+
+def test_an_impulsive_plan_with_an_acceleration_says_how_long_its_burns_last():
+    """Found as a user: accel_mps2 with the impulsive model was silently unused.  Each leg's
+    burns last its ΔV over the acceleration; a note names each leg whose burns take more
+    than 1 % of it (the paper's Part IV-D condition for impulses)."""
+    from sdc_cvx import solve
+    from sdc_cvx.inputs.catalog import Catalog
+    from tests.conftest import PAPER_CSV
+
+    accel = 2e-5  # a weak engine: 80 m/s take 46 days
+    answer = solve(Catalog.from_csv(PAPER_CSV), Mission(n=3, vehicle={"accel_mps2": accel}))
+    seconds = [leg.dv_mps / accel for leg in answer.legs]
+    assert [leg.masses["burn_s"] for leg in answer.legs] == pytest.approx(seconds)
+    long = [k for k, leg in enumerate(answer.legs)
+            if seconds[k] > 0.01 * leg.duration_days * 86400.0]  # fmt: skip
+    assert long and answer.vehicle["long_burns"] == long
+    for k in long:
+        leg = answer.legs[k]
+        assert any(f"leg {leg.from_id} -> {leg.to_id}: its burns last "
+                   f"{seconds[k] / 3600:.1f} h" in note for note in answer.notes)  # fmt: skip
+
+
 @pytest.mark.slow
 def test_run_with_a_low_thrust_vehicle_through_a_real_process(tmp_path):
     out = tmp_path / "lt"
