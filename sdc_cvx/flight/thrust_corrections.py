@@ -63,22 +63,28 @@ PHASE_REVOLUTIONS = 15
 its tangential arcs stay about an orbit long, and cost a third)."""
 
 
+def eccentricity_change(track: Track, wanted, model: ForceModel, pole) -> np.ndarray:
+    """``wanted(t)`` less the vehicle's mean eccentricity vector, in its plane (GCRF)."""
+    delta = wanted(track.t) - mean_eccentricity(track, model, pole)
+    return delta - np.dot(delta, track.normal) * track.normal
+
+
 def thrust_eccentricity(track: Track, leg: int, ephemeris, target: int, accel: float,
-                        model: ForceModel, pole, wanted=None) -> list:  # fmt: skip
+                        model: ForceModel, pole, wanted=None, until=np.inf) -> list:  # fmt: skip
     """Tangential arcs that give the vehicle the debris' mean eccentricity vector, or
     ``wanted(t)`` (GCRF) where given (:func:`~sdc_cvx.flight.thrust_legs.fly_leg`: the
-    coast's, which the apsides then turn onto the debris')."""
+    coast's, which the apsides then turn onto the debris'), ending by ``until`` [s]."""
     if wanted is None:
         def wanted(t):
             return debris_eccentricity(ephemeris, target, t, model)
     done = []
     for _ in range(CHUNKS):
-        delta = wanted(track.t) - mean_eccentricity(track, model, pole)
-        delta -= np.dot(delta, track.normal) * track.normal  # in the plane
+        delta = eccentricity_change(track, wanted, model, pole)
         size = float(np.linalg.norm(delta))
-        if size < SMALLEST_DE:
+        if size < SMALLEST_DE or track.t >= until:
             break
-        seconds = min(np.pi * np.linalg.norm(track.v) * size / (4.0 * accel), CHUNK_S)
+        seconds = min(np.pi * np.linalg.norm(track.v) * size / (4.0 * accel), CHUNK_S,
+                      until - track.t)  # fmt: skip
         law = Thrust(accel, "tangential", 1.0, tuple(delta / size))
         done.append(track.thrust(track.t + seconds, law, model, pole, leg, "correction"))
     return done

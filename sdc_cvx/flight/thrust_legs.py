@@ -56,8 +56,16 @@ from .corrections import (
 from .propagation import ForceModel
 from .rates import propagated_mean_state
 from .thrust import Thrust
-from .thrust_corrections import thrust_eccentricity, thrust_semi_major_axis
+from .thrust_corrections import (
+    eccentricity_change,
+    thrust_eccentricity,
+    thrust_semi_major_axis,
+)
 from .track import Track
+
+COAST_MARGIN_S = 2.0 * SECONDS_PER_DAY
+"""Time [s] the coast keeps after matching the eccentricity: the radius arc back onto the
+coast's and the trims that phase the arrival."""
 
 
 def phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, accel, factors, bounds, on_time,
@@ -149,10 +157,6 @@ def _coast_eccentricity(track: Track, leg: int, phased: LowThrustLegPlan, goal_o
     r_d, v_d = debris_orbit(ephemeris, leg, phased.arrive, model)
     goal = in_node_frame(np.mean(eccentricity_vector(r_d, v_d, mu=model.mu), axis=0),
                          goal_orbit.normal, pole)  # fmt: skip
-    needed = np.pi * circular_speed(phased.a_drift, mu=model.mu) * np.linalg.norm(goal) / (
-        4.0 * accel)  # fmt: skip
-    if phased.coast_end - track.t < needed + 2.0 * SECONDS_PER_DAY:
-        return []  # no room: after the arrival
     rate = secular_rates(phased.a_drift, 0.0, phased.inc_drift, j2=model.j2, mu=model.mu,
                          r_eq=model.r_eq).argp  # fmt: skip
 
@@ -165,7 +169,16 @@ def _coast_eccentricity(track: Track, leg: int, phased: LowThrustLegPlan, goal_o
         node /= np.linalg.norm(node)
         return x * node + y * np.cross(normal, node)
 
-    done = thrust_eccentricity(track, leg, ephemeris, leg, accel, model, pole, wanted=wanted)
+    # the change from the vehicle's own eccentricity, not from a circle: a vehicle that
+    # leaves an eccentric debris may need twice the debris' (the coast then ran out, and
+    # the arcs went on past it: a GTOC9 leg arrived 2.3 deg of RAAN off)
+    size = float(np.linalg.norm(eccentricity_change(track, wanted, model, pole)))
+    needed = np.pi * circular_speed(phased.a_drift, mu=model.mu) * size / (4.0 * accel)
+    room = phased.coast_end - COAST_MARGIN_S
+    if room - track.t < needed:
+        return []  # no room: after the arrival
+    done = thrust_eccentricity(track, leg, ephemeris, leg, accel, model, pole, wanted=wanted,
+                               until=room)  # fmt: skip
     return done + thrust_semi_major_axis(track, leg, ephemeris, leg, accel, model, pole,
                                          goal_m=phased.a_drift)
 

@@ -169,12 +169,14 @@ def low_thrust_leg_at(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, i
                    + plane_change_raan_change(a_d, origin.inc, target.inc, accel, **consts)
                    + spiral_raan_change(a_d, target.a, target.inc, accel, **consts))  # fmt: skip
     coast = secular_rates(a_d, 0.0, i_d, **consts)
-    rel = coast.raan * drift_factors[0] - target.raan_rate
     thrust = t_a + t_b + t_d
     gap = target.raan_at(t0 + thrust) - origin.raan_at(t0) - raan_thrust
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t_c = (wrap_angle(gap, rel) + np.sign(rel) * laps * TWO_PI) / rel
-    t_c = np.where(rel != 0.0, np.maximum(t_c, 0.0), np.nan)
+    t_c = _coast(gap, coast.raan * drift_factors[0] - target.raan_rate, laps)
+    if target.wander is not None:  # its RAAN's mean rate over that coast, once more
+        turned = target.raan_at(t0 + thrust + t_c) - target.raan_at(t0 + thrust)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mean_rate = np.where(t_c > 1.0, turned / t_c, target.raan_rate)
+        t_c = _coast(gap, coast.raan * drift_factors[0] - mean_rate, laps)
     arrive = t0 + thrust + t_c
     arglat = (origin.arglat_at(t0) + spiral_arglat(origin.a, a_d, origin.inc, accel, **consts)
               + plane_change_arglat(a_d, origin.inc, target.inc, accel, **consts)
@@ -183,6 +185,14 @@ def low_thrust_leg_at(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, i
     return {"t_a": t_a, "t_b": t_b, "t_c": t_c, "t_d": t_d, "arrive": arrive,
             "dv": dv_a + dv_b + dv_d,
             "phase_error": _wrap_pi(target.arglat_at(arrive) - arglat)}  # fmt: skip
+
+
+def _coast(gap, rel, laps):
+    """The coast [s] that closes the RAAN ``gap`` [rad] at the relative rate ``rel``
+    [rad/s], ``laps`` whole turns more (NaN where ``rel`` is 0)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_c = (wrap_angle(gap, rel) + np.sign(rel) * laps * TWO_PI) / rel
+    return np.where(rel != 0.0, np.maximum(t_c, 0.0), np.nan)
 
 
 def as_leg_plan(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, inc_drift,

@@ -538,3 +538,21 @@ def test_debris_that_drag_speeds_up_are_met_where_sgp4_has_them(tmp_path):
     # date the vehicle is ready, would close the RAANs only years later
     assert rendezvous["phasing_dv_mps"].abs().max() < 20.0
     assert flight["flown_dv_mps"] < 100.0  # with the line alone: 580 m/s, leg 3 not flown
+
+
+@pytest.mark.slow
+@pytest.mark.requires_shared_data("gtoc9/debris_data.txt")
+def test_a_low_thrust_gtoc9_flight_meets_every_debris_in_its_plane():
+    """Found as a user: README's low-thrust GTOC9 flight (n = 5, 1e-4 m/s^2) missed its
+    last debris by 1006-7107 km.  That leg's coast was too short to match the debris'
+    eccentricity from the vehicle's own (measured from a circle, it looked long enough):
+    the arcs ran past the coast's end and the leg arrived 2.3-3.0 deg of RAAN off.  Every
+    arrival is now in the debris' plane (hundredths of a degree) and within 100 km."""
+    from sdc_cvx import Mission, read_catalog, solve
+
+    catalog = read_catalog(shared_file("gtoc9/debris_data.txt"))
+    plan = solve(catalog, Mission(n=5, transfer="low-thrust", vehicle={"accel_mps2": 1e-4}))
+    flight = plan.fly()
+    assert len(flight.rendezvous) == 4 and flight.status != "missed", flight.summary()
+    for meeting in flight.rendezvous:
+        assert abs(meeting.draan_deg) < 0.05 and meeting.miss_km < 100.0, meeting

@@ -124,3 +124,31 @@ def test_normal_thrust_switched_by_a_direction_turns_the_plane_towards_a_normal(
     turned = np.arccos(np.clip(h1 @ h, -1, 1))
     assert turned == pytest.approx(2 / np.pi * F / np.sqrt(MU / a0) * seconds, rel=5e-3)
     assert np.arccos(np.clip(h1 @ n, -1, 1)) < np.arccos(np.clip(h @ n, -1, 1)) - 0.9 * turned
+
+
+def test_eccentricity_arcs_end_when_the_coast_has_no_more_room():
+    """Found as a user: a GTOC9 low-thrust leg matched its eccentricity on a 7-day coast
+    that needed 10 (measured from a circle, not from the vehicle's own eccentricity): the
+    arcs went on past the coast's end and the leg arrived 2.3 deg of RAAN off, 1006 km
+    away.  The arcs stop at ``until``, having moved e at (4/pi) f / V along the change."""
+    from sdc_cvx.flight.thrust_corrections import eccentricity_change, thrust_eccentricity
+
+    a0 = R + 800e3
+    r, v = circular(a0, np.radians(98.6))
+    track = Track(0.0, r, v)
+    h = np.cross(r, v) / np.linalg.norm(np.cross(r, v))
+    d = np.cross(h, r) / np.linalg.norm(np.cross(h, r))
+    goal = 0.01 * d  # 5.6 days of thrust at 1e-4 m/s^2
+
+    def wanted(t):
+        return goal
+
+    start = eccentricity_change(track, wanted, KEPLER, POLE)
+    assert start == pytest.approx(goal, abs=1e-6)  # from a circle: all of it
+    until = 2 * 86400.0
+    arcs = thrust_eccentricity(track, 4, None, 4, F, KEPLER, POLE, wanted=wanted, until=until)
+    assert track.t == pytest.approx(until) and arcs[-1].end_s == pytest.approx(until)
+    moved = start - eccentricity_change(track, wanted, KEPLER, POLE)
+    assert moved @ d == pytest.approx(4 / np.pi * F / np.sqrt(MU / a0) * until, rel=0.02)
+    assert thrust_eccentricity(track, 4, None, 4, F, KEPLER, POLE, wanted=wanted,
+                               until=until) == []  # fmt: skip
