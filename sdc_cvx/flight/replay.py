@@ -162,7 +162,6 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
         else:
             step = thrust_legs.phase(origin, target, t_ready, leg, plan.accel_mps2, factors,
                                      bounds, on_time, latest, _physics(consts))  # fmt: skip
-        in_time = step["in_time"]
         if step["note"]:
             notes.append(f"leg {k + 1}: {step['note']}")
         if step["arrive"] > (plan.tmax_days + HOPELESS_DAYS) * SECONDS_PER_DAY:
@@ -179,11 +178,15 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
         # correction = flown, leg by leg
         phasing = step["model_dv"] - step["point_dv"]
         correction = sum(m.dv_mps for m in flown["maneuvers"]) - leg.dv_mps - phasing
-        delay = step["arrive"] - leg.arrival_day * SECONDS_PER_DAY
+        # as flown: the arrive impulse against the plan's arrival, and the corrections
+        # done by the plan's departure from the debris (the phasing's aim, step["in_time"])
+        arrived = next(m.epoch_s for m in flown["maneuvers"] if m.kind == "arrive")
+        delay = arrived - leg.arrival_day * SECONDS_PER_DAY
+        on_schedule = meeting["epoch_s"] <= (leg.arrival_day + stay) * SECONDS_PER_DAY + 1.0
         meetings.append(Rendezvous(
             target=ids[k + 1], **meeting, correction_dv_mps=correction,
             phasing_shift_h=float(step["depart"] - t_ready) / 3600.0, phasing_dv_mps=phasing,
-            delay_days=delay / SECONDS_PER_DAY, in_time=bool(in_time),
+            delay_days=delay / SECONDS_PER_DAY, in_time=bool(on_schedule),
         ))  # fmt: skip
         if progress is not None:
             progress(f"leg {k + 1}/{len(plan.legs)} {ids[k]} -> {ids[k + 1]}: miss "

@@ -10,7 +10,11 @@ swapped in, as the run folder itself is):
   accel_mps2, law`` (empty for its impulses), ``epoch_utc`` being the arc's start;
 - ``rendezvous.csv``: per arrival ``epoch_utc, target, miss_km, miss_mps, da_km, di_deg,
   draan_deg, correction_dv_mps, phasing_shift_h, phasing_dv_mps``, then ``delay_days``
-  (arrival after the plan's) and ``in_time``; measured just after the ``arrive`` impulse;
+  (the ``arrive`` impulse after the plan's arrival) and ``in_time`` (the corrections done
+  by the plan's departure from that debris, or its end); ``da_km, di_deg, draan_deg``
+  measured just after the ``arrive`` impulse, ``epoch_utc, miss_km, miss_mps`` after the
+  corrections (the vehicle on the debris' orbit), ``correction_dv_mps`` the leg's flown
+  ΔV less the plan's and the phasing's (negative where the flight's transfers cost less);
 - ``trajectory.oem``: CCSDS OEM 2.0 (KVN, GCRF, UTC), one segment per arc between impulses;
 - ``flight.json``: the totals, the force model and the status (with a vehicle whose
   propellant the plan computed, ``propellant``: the flight's by the rocket equation

@@ -556,3 +556,9 @@ def test_a_low_thrust_gtoc9_flight_meets_every_debris_in_its_plane():
     assert len(flight.rendezvous) == 4 and flight.status != "missed", flight.summary()
     for meeting in flight.rendezvous:
         assert abs(meeting.draan_deg) < 0.05 and meeting.miss_km < 100.0, meeting
+    # the delay is the flight's: its arrive impulse (after spirals flown from measured
+    # states, hours from the phasing's prediction) against the plan's arrival
+    arrivals = [m.epoch_s for m in flight.maneuvers if m.kind == "arrive"]
+    for meeting, arrived, leg in zip(flight.rendezvous, arrivals, plan.legs, strict=True):
+        planned = leg.departure_day + leg.duration_days
+        assert meeting.delay_days == pytest.approx(arrived / 86400.0 - planned, abs=1e-9)

@@ -298,6 +298,27 @@ def test_one_rendezvous_per_leg_with_the_paths_debris(flown):
         assert arrive.max() <= meet[k]
 
 
+
+def test_delay_and_in_time_are_the_flights_own(flown):
+    """Found as a user: ``delay_days`` and ``in_time`` were the phasing's prediction (a
+    low-thrust leg said +0.23 days and in time; its arrive impulse came 3.2 days after the
+    plan's arrival).  Read from the files: the delay is the arrive impulse's epoch less the
+    plan's arrival; in time means the corrections done (the rendezvous epoch) by the
+    plan's departure from that debris, or the plan's end after the last."""
+    start = pd.Timestamp(flown.solution["start"])
+    legs = flown.solution["legs"]
+    m = flown.maneuvers
+    arrivals = utc(m.loc[m["kind"] == "arrive", "epoch_utc"])
+    meets = utc(flown.rendezvous["epoch_utc"])
+    leaves = [leg["departure_day"] for leg in legs[1:]] + [flown.solution["total_duration_days"]]
+    for k, leg in enumerate(legs):
+        planned = start + pd.to_timedelta(leg["departure_day"] + leg["duration_days"], "D")
+        assert flown.rendezvous["delay_days"][k] == pytest.approx(
+            (arrivals[k] - planned).total_seconds() / 86400.0, abs=1e-6)  # fmt: skip
+        leave = start + pd.to_timedelta(leaves[k], "D")
+        assert bool(flown.rendezvous["in_time"][k]) == (meets[k] <= leave + pd.Timedelta("1s"))
+
+
 def test_the_epochs_are_iso_utc_and_increasing(flown):
     for frame, strict in ((flown.maneuvers, False), (flown.rendezvous, True)):
         stamps = list(frame["epoch_utc"])
