@@ -284,7 +284,8 @@ class Flight:
 
     # -- files ------------------------------------------------------------------------
     def save(self, run_folder) -> list[str]:
-        """Write ``run_folder/flight/`` at once (aside, then swapped in); the paths written.
+        """Write ``run_folder/flight/`` at once (aside, then swapped in; ``run_folder``
+        made if need be); the paths written.
 
         An earlier ``flight/`` is replaced only when it holds nothing but the files a
         flight writes: a folder of the user's there is refused (:class:`FlightError`).
@@ -295,7 +296,7 @@ class Flight:
             raise FlightError(problem)
         stage = run_folder / f".{FLIGHT_FOLDER}.{os.getpid()}.partial"
         shutil.rmtree(stage, ignore_errors=True)
-        stage.mkdir()
+        stage.mkdir(parents=True)  # the run folder too, where the plan was not saved
         try:
             names = self._write(stage)
             old = run_folder / f".{FLIGHT_FOLDER}.{os.getpid()}.old"
@@ -320,7 +321,7 @@ class Flight:
         write_oem(folder / "trajectory.oem", segments, object_name="SDC_CVX VEHICLE",
                   object_id=f"SDC_CVX-{first}",
                   comments=(f"sdc_cvx flown plan {' -> '.join(self.plan.catalog.frame['id'])}",
-                            f"force model {self.force.describe()}",
+                            f"force model {_force_text(self.force.describe())}",
                             "zonal terms about the true pole of date (TEME z axis) at the "
                             "middle of each leg; manoeuvres (impulses, thrust arcs) in "
                             "maneuvers.csv"))  # fmt: skip
@@ -338,3 +339,13 @@ class Flight:
 
 def _iso(epochs: pd.DatetimeIndex) -> list[str]:
     return [e.strftime("%Y-%m-%dT%H:%M:%S.%fZ") for e in epochs.tz_convert("UTC")]
+
+
+def _force_text(model: dict) -> str:
+    """The force model for a comment line: ``j2 (mu 3.986004418e+14 m^3/s^2, ...)``."""
+    terms = [f"mu {model['mu']:.10g} m^3/s^2", f"r_eq {model['r_eq']:.10g} m"]
+    terms += [f"{name.upper()} {model[name]:.9g}" for name in ("j2", "j3", "j4") if model[name]]
+    if model["drag"]:
+        terms.append(f"drag: Cd {model['cd']:g}, A/m {model['area_to_mass_m2_per_kg']:g} "
+                     f"m^2/kg, atmosphere {model['atmosphere']}")  # fmt: skip
+    return f"{model['name']} ({', '.join(terms)})"

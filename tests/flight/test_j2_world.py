@@ -9,6 +9,8 @@ correction.  With the first-order rates instead of the fitted ones the correctio
 the replay sees what the rates miss.
 """
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -19,6 +21,7 @@ from sdc_cvx.flight.frames import earth_pole_gcrf, equatorial_basis
 from sdc_cvx.flight.propagation import ForceModel, propagate
 from sdc_cvx.flight.rates import SAMPLES, mean_state
 from sdc_cvx.physics.elements import elements_to_state
+from sdc_cvx.report.out_folder import FLIGHT_FILES
 
 pytestmark = pytest.mark.slow
 START = pd.Timestamp("2021-03-01T00:00:00Z")
@@ -132,3 +135,18 @@ def test_a_flight_says_when_it_did_not_fly_as_planned(world_and_plan):
     far = dataclasses.replace(first, miss_km=1261.1)
     missed = dataclasses.replace(flight, rendezvous=(far, *flight.rendezvous[1:]))
     assert missed.status == "missed" and "missed by 1261 km" in missed.warning()
+
+
+def test_a_flight_saved_where_no_run_folder_is_yet_makes_it(world_and_plan, tmp_path):
+    """Found as a user: ``solution.fly().save("run")`` before ``solution.save("run")``
+    raised FileNotFoundError on its staging folder."""
+    world, solution = world_and_plan
+    flight = fly(FlightPlan.from_solution(solution), ephemeris=world)
+    written = flight.save(tmp_path / "new" / "run")
+    assert sorted(Path(p).name for p in written) == sorted(FLIGHT_FILES)
+    assert all(Path(p).is_file() for p in written)
+    assert [p.name for p in (tmp_path / "new" / "run").iterdir()] == ["flight"]
+    comment = [line for line in (tmp_path / "new" / "run" / "flight" / "trajectory.oem")
+               .read_text().splitlines() if "force model" in line]  # fmt: skip
+    assert comment == ["COMMENT force model j2 (mu 3.986004418e+14 m^3/s^2, r_eq 6378137 m, "
+                       "J2 0.00108262668)"]  # fmt: skip
