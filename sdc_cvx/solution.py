@@ -313,9 +313,13 @@ class Solution:
             lines.append(f"vehicle   propellant {v['propellant_needed_kg']:.1f} kg{tank}, wet mass "
                          f"at launch {v['wet_mass_kg']:.1f} kg (with the propellant the plan "
                          "needs)")  # fmt: skip
-            if v.get("long_burns"):
-                lines.append(f"warning   the burns of {len(v['long_burns'])} leg(s) are long "
-                             "against their coast: the impulsive model may not hold (notes)")
+        elif self.vehicle and {"dry_mass_kg", "propellant_kg"} & set(self.vehicle):
+            missing = [k for k in ("dry_mass_kg", "isp_s") if k not in self.vehicle]
+            lines.append(f"vehicle   no propellant computed, the tank not checked: "
+                         f"{' and '.join(missing)} missing")  # fmt: skip
+        if self.vehicle and self.vehicle.get("long_burns"):
+            lines.append(f"warning   the burns of {len(self.vehicle['long_burns'])} leg(s) are "
+                         "long against their coast: the impulsive model may not hold (notes)")
         return "\n".join(lines)
 
     # -- for Python users: the run folder and the figures (issue 14) ------------------

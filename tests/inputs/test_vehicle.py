@@ -131,6 +131,20 @@ def test_an_impulsive_plan_with_an_acceleration_says_how_long_its_burns_last():
         leg = answer.legs[k]
         assert any(f"leg {leg.from_id} -> {leg.to_id}: its burns last "
                    f"{seconds[k] / 3600:.1f} h" in note for note in answer.notes)  # fmt: skip
+    assert f"warning   the burns of {len(long)} leg(s) are long" in answer.summary()
+
+
+def test_a_tank_without_an_isp_says_that_it_was_not_checked():
+    """Found as a user: a [vehicle] with a dry mass and a tank but no Isp planned as if
+    there were no vehicle, exit 0, nothing said."""
+    from sdc_cvx import solve
+    from sdc_cvx.inputs.catalog import Catalog
+    from tests.conftest import PAPER_CSV
+
+    vehicle = {"dry_mass_kg": 800.0, "propellant_kg": 1.0}  # a tank far too small
+    answer = solve(Catalog.from_csv(PAPER_CSV), Mission(n=3, vehicle=vehicle))
+    assert ("vehicle   no propellant computed, the tank not checked: isp_s missing"
+            in answer.summary().splitlines())  # fmt: skip
 
 
 @pytest.mark.slow
