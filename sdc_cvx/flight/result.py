@@ -208,12 +208,14 @@ class Flight:
         limit = "within" if self.within_tmax else "LATE: beyond"
         limit += f" T_max {self.plan.tmax_days:g} d"
         planned = f"plan {self.plan_dv_mps:.2f} m/s"
-        if not self.complete:
-            limit += f"; INCOMPLETE: {self.notes[-1]}"
+        ends = f"ends day {self.end_day:.2f}"
+        if not self.complete:  # its end is the last debris met, not the mission's
+            limit = f"INCOMPLETE: {self.notes[-1]}"
+            ends = f"the last debris met on day {self.end_day:.2f}"
             planned += (f" ({base:.2f} m/s over the {len(self.rendezvous)} of "
                         f"{len(self.plan.legs)} legs flown)")  # fmt: skip
-        met = (f"worst miss {self.worst_miss_km:.2f} km; ends day {self.end_day:.2f}"
-               if self.rendezvous else "no debris met")  # fmt: skip
+        met = (f"worst miss {self.worst_miss_km:.2f} km; {ends}" if self.rendezvous
+               else "no debris met")  # fmt: skip
         line = (f"flight    {planned}, flown {self.flown_dv_mps:.2f} m/s "
                 f"({extra:+.2f} %), {met}, {limit} ({self.force.describe()['name']}, "
                 f"{self.rates} rates, {self.seconds:.0f} s)")  # fmt: skip

@@ -130,6 +130,11 @@ def test_a_flight_says_when_it_did_not_fly_as_planned(world_and_plan):
     first = flight.rendezvous[0]
     short = dataclasses.replace(flight, rendezvous=(first,), notes=("leg 2 not flown",))
     assert short.status == "incomplete" and "leg 2 not flown" in short.warning()
+    # found as a user: "ends day 162.06, within T_max 365.25 d; INCOMPLETE: ..." said
+    # both; the day is the last debris met, and no T_max verdict is given
+    said = short.summary()
+    assert "INCOMPLETE: leg 2 not flown" in said and "T_max" not in said
+    assert f"the last debris met on day {first.epoch_s / 86400.0:.2f}" in said
     assert short.planned_dv_flown_mps == pytest.approx(solution.legs[0].dv_mps)
     assert f"{short.planned_dv_flown_mps:.2f} m/s over the 1 of 2 legs flown" in short.summary()
     far = dataclasses.replace(first, miss_km=1261.1)
