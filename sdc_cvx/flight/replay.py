@@ -136,7 +136,7 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
     r0, v0 = ephemeris.state(0, np.array([t0]))
     track = Track(t0, r0[0], v0[0])
     maneuvers, meetings = [], []
-    delay = 0.0  # how much later than the plan the vehicle is ready [s]
+    delay = 0.0  # how much later than the plan the phased leg arrives [s]
     notes = list(plan.notes)  # first: the last note says why a flight is incomplete
     for k, leg in enumerate(plan.legs):
         t_ready = max(leg.departure_day * SECONDS_PER_DAY + delay, track.t)
@@ -181,17 +181,21 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
         # as flown: the arrive impulse against the plan's arrival, and the corrections
         # done by the plan's departure from the debris (the phasing's aim, step["in_time"])
         arrived = next(m.epoch_s for m in flown["maneuvers"] if m.kind == "arrive")
-        delay = arrived - leg.arrival_day * SECONDS_PER_DAY
+        late = (arrived - leg.arrival_day * SECONDS_PER_DAY) / SECONDS_PER_DAY
         on_schedule = meeting["epoch_s"] <= (leg.arrival_day + stay) * SECONDS_PER_DAY + 1.0
         meetings.append(Rendezvous(
             target=ids[k + 1], **meeting, correction_dv_mps=correction,
             phasing_shift_h=float(step["depart"] - t_ready) / 3600.0, phasing_dv_mps=phasing,
-            delay_days=delay / SECONDS_PER_DAY, in_time=bool(on_schedule),
+            delay_days=late, in_time=bool(on_schedule),
         ))  # fmt: skip
+        # the next leg is ready the phased leg's delay after the plan's departure (a
+        # low-thrust arrival flown hours to days off it leaves the plan's stay at the
+        # debris as it was; the corrections' end bounds it anyway)
+        delay = step["arrive"] - leg.arrival_day * SECONDS_PER_DAY
         if progress is not None:
             progress(f"leg {k + 1}/{len(plan.legs)} {ids[k]} -> {ids[k + 1]}: miss "
                      f"{meeting['miss_km']:.2f} km, phasing {phasing:+.2f} m/s, correction "
-                     f"{correction:+.2f} m/s, {delay / SECONDS_PER_DAY:+.2f} d")  # fmt: skip
+                     f"{correction:+.2f} m/s, {late:+.2f} d")  # fmt: skip
     end = track.t + 2.0 * np.pi / orbits[-1].arglat_rate  # one more orbit with the last debris
     track.coast(end, model, _pole(plan, end))
     if plan.accel_mps2 is not None:  # first: the last note says why a flight is incomplete
