@@ -213,8 +213,25 @@ class Solution:
         return f"{self.status}, {gap} ({why}; lower bound {self.lower_bound_mps:.2f} m/s)"
 
     def legs_frame(self) -> pd.DataFrame:
-        """Legs as a table (km, deg, days, m/s)."""
-        return pd.DataFrame([leg.to_dict() for leg in self.legs])
+        """The legs as ``legs.csv`` has them (km, deg, days, m/s), with the operations each
+        leg brings and the running total.
+
+        ``operations_dv_mps`` is the ΔV of the operations at the leg's arrival debris (the
+        first leg also carries those at the first debris when the mission starts there);
+        ``cumulative_dv_mps`` is the total so far, so its last value is ``total_dv_mps``
+        (transfers plus operations), as in the summary, ``cost.png`` and ``solution.json``.
+        """
+        frame = pd.DataFrame([leg.to_dict() for leg in self.legs])
+        if frame.empty:
+            return frame
+        per_debris = dict(self.operations.get("per_debris_mps") or {})
+        operations = [float(per_debris.get(leg.to_id, 0.0)) for leg in self.legs]
+        operations[0] += float(per_debris.get(self.legs[0].from_id, 0.0))
+        frame["operations_dv_mps"] = operations
+        frame["cumulative_dv_mps"] = (frame["dv_mps"] + frame["operations_dv_mps"]).cumsum()
+        # the sum of rounded parts can differ from the total in the last digits: end on it
+        frame.loc[frame.index[-1], "cumulative_dv_mps"] = self.total_dv_mps
+        return frame
 
     @property
     def has_history(self) -> bool:
@@ -224,11 +241,35 @@ class Solution:
         return bool(self.iterations or self.search_trace) or self.method != "certified"
 
     def iterations_frame(self) -> pd.DataFrame:
-        """Iteration history as a table (the paper's Table 7 and more)."""
+        """The search's history as ``iterations.csv`` has it: the paper's Table 7 and more.
+
+        One row per iteration of the sequential linearisation, ``step`` saying what became
+        of it: ``accepted``, ``rejected`` (the ``rejected`` column says why, e.g. a plan
+        that ends after T_max) or ``no path``, followed by ``, repeats iteration k`` when
+        the path and values are an earlier iteration's.  A certified search that needed no
+        relaxation rounds has a row each time its bound or plan changed (``step``
+        ``bound``).
+        """
         columns = [f.name for f in fields(IterationRecord)]  # also when there is no row
         frame = pd.DataFrame([record.to_dict() for record in self.iterations], columns=columns)
         frame["path"] = frame["path"].map(lambda p: "->".join(p))
-        return frame
+        if frame.empty and self.search_trace:  # the bound and the plan at each change
+            rows = [{"iteration": k, "dv_true_mps": plan, "status": "bound", "elapsed_s": seconds,
+                     "note": "lower bound " + ("none yet" if bound is None
+                                               else f"{bound:.2f} m/s")}
+                    for k, (seconds, bound, plan) in enumerate(self.search_trace)]  # fmt: skip
+            return pd.DataFrame(rows, columns=columns).assign(path="", step="bound")
+        seen: dict[tuple, int] = {}
+        steps = []
+        for record in self.iterations:
+            key = (record.path, record.dv_linearized_mps, record.dv_true_mps,
+                   record.duration_true_days)  # fmt: skip
+            step = "rejected" if record.rejected else "accepted" if record.path else "no path"
+            if record.path and key in seen:
+                step += f", repeats iteration {seen[key]}"
+            steps.append(step)
+            seen.setdefault(key, record.iteration)
+        return frame.assign(step=steps)
 
     def to_dict(self) -> dict:
         """JSON-ready dict with the documented keys of ``solution.json``.

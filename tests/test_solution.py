@@ -81,3 +81,22 @@ def test_a_wide_requested_gap_is_not_called_optimal():
                    lower_bound_mps=0.9189 * solution.total_dv_mps)  # fmt: skip
     assert wide.quality().startswith("within 8.11 % of the optimum (requested 50 %): gap ")
     assert "optimal" not in wide.summary().splitlines()[1]
+
+
+@pytest.mark.parametrize("method", ["certified", "paper"])
+def test_the_frames_of_a_solution_are_the_tables_of_its_run_folder(tmp_path, method):
+    """Found as a user: ``iterations_frame()`` of a certified solve was empty while
+    ``iterations.csv`` had its bound's rows, and ``legs_frame()`` lacked two columns of
+    ``legs.csv``; README shows the frames as what the run folder holds."""
+    from sdc_cvx import Mission, SolverOptions, read_catalog, solve
+    from sdc_cvx.report.run_folder import CSV_FLOAT_FORMAT
+    from tests.conftest import PAPER_CSV
+
+    answer = solve(read_catalog(PAPER_CSV), Mission(n=3), solver=SolverOptions(method=method))
+    answer.save(tmp_path / "run")
+    legs, history = answer.legs_frame(), answer.iterations_frame()
+    assert len(legs) == 2 and legs["cumulative_dv_mps"].iloc[-1] == answer.total_dv_mps
+    assert len(history) > 0 and "step" in history
+    for frame, name in ((legs, "legs.csv"), (history, "iterations.csv")):
+        text = frame.to_csv(index=False, float_format=CSV_FLOAT_FORMAT)
+        assert (tmp_path / "run" / name).read_text(encoding="utf-8") == text, name

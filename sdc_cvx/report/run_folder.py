@@ -35,8 +35,6 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
-import pandas as pd
-
 from ..inputs.catalog import Catalog
 from ..network.edges import EdgeTable
 from .atomic import file_mode, write_atomic
@@ -161,60 +159,6 @@ def _parent_lock(folder: Path):
         os.close(fd)
 
 
-def legs_table(solution: Solution) -> pd.DataFrame:
-    """``legs.csv``: the legs, the operations each leg brings, and the running total.
-
-    ``operations_dv_mps`` is the ΔV of the operations at the leg's arrival debris (the
-    first leg also carries those at the first debris when the mission starts there);
-    ``cumulative_dv_mps`` is the total so far, so its last value is the solution's
-    ``total_dv_mps`` (transfers plus operations), as in the summary, ``cost.png`` and
-    ``solution.json``.
-    """
-    frame = solution.legs_frame()
-    if frame.empty:
-        return frame
-    per_debris = dict(solution.operations.get("per_debris_mps") or {})
-    operations = [float(per_debris.get(leg.to_id, 0.0)) for leg in solution.legs]
-    operations[0] += float(per_debris.get(solution.legs[0].from_id, 0.0))
-    frame["operations_dv_mps"] = operations
-    frame["cumulative_dv_mps"] = (frame["dv_mps"] + frame["operations_dv_mps"]).cumsum()
-    # the sum of rounded parts can differ from the total in the last digits: end on the total
-    frame.loc[frame.index[-1], "cumulative_dv_mps"] = solution.total_dv_mps
-    return frame
-
-
-def iterations_table(solution: Solution) -> pd.DataFrame:
-    """``iterations.csv``: the iterations, with ``step`` saying what became of each (for a
-    certified search without relaxation rounds, its bound and plan at each change).
-
-    ``step`` is ``accepted``, ``rejected`` (the driver rejected the step; the
-    ``rejected`` column says why, e.g. a plan that ends after T_max) or ``no path``,
-    followed by ``, repeats iteration k`` when the path and values are those of an
-    earlier iteration (the driver went back to an earlier point).
-    """
-    frame = solution.iterations_frame()
-    if frame.empty and solution.search_trace:  # a certified search that needed no relaxation
-        # loop: its steps are the bound and the plan each time either changed
-        rows = [{"iteration": k, "dv_true_mps": plan, "status": "bound", "elapsed_s": seconds,
-                 "note": "lower bound " + ("none yet" if bound is None else f"{bound:.2f} m/s")}
-                for k, (seconds, bound, plan) in enumerate(solution.search_trace)]  # fmt: skip
-        return pd.DataFrame(rows, columns=frame.columns).assign(path="", step="bound")
-    if frame.empty:
-        return frame
-    seen: dict[tuple, int] = {}
-    steps = []
-    for record in solution.iterations:
-        key = (record.path, record.dv_linearized_mps, record.dv_true_mps,
-               record.duration_true_days)  # fmt: skip
-        step = "rejected" if record.rejected else "accepted" if record.path else "no path"
-        if record.path and key in seen:
-            step += f", repeats iteration {seen[key]}"
-        steps.append(step)
-        seen.setdefault(key, record.iteration)
-    frame["step"] = steps
-    return frame
-
-
 def write_run(
     folder: Path | str,
     solution: Solution,
@@ -227,8 +171,9 @@ def write_run(
 ) -> list[Path]:
     """Write a run folder: all its files aside, then swapped in at once.
 
-    Files: ``legs.csv`` (:func:`legs_table`), ``iterations.csv``
-    (:func:`iterations_table`), ``edges.csv`` (if ``edges`` is given),
+    Files: ``legs.csv`` (:meth:`~sdc_cvx.solution.Solution.legs_frame`), ``iterations.csv``
+    (:meth:`~sdc_cvx.solution.Solution.iterations_frame`), ``edges.csv`` (if ``edges`` is
+    given),
     ``scenario.toml`` (if ``scenario_toml`` is given: the scenario as used), ``run.log``
     (if ``log`` is given: the progress of the run), the figures ``orbits``, ``raan``,
     ``cost``, ``iterations`` in each of ``formats`` (if a catalog is known,
@@ -315,9 +260,10 @@ def write_staged(folder: Path | str, fill: Callable[[Path], list[str]], *,
 
 def _write_files(stage, *, solution, edges, scenario_toml, catalog, formats, log,
                  title=None) -> list[str]:  # fmt: skip
-    files = {"legs.csv": legs_table(solution).to_csv(index=False, float_format=CSV_FLOAT_FORMAT)}
+    files = {"legs.csv": solution.legs_frame().to_csv(index=False,
+                                                      float_format=CSV_FLOAT_FORMAT)}  # fmt: skip
     if solution.has_history:
-        files["iterations.csv"] = iterations_table(solution).to_csv(
+        files["iterations.csv"] = solution.iterations_frame().to_csv(
             index=False, float_format=CSV_FLOAT_FORMAT)  # fmt: skip
     if edges is not None:
         files["edges.csv"] = edges.frame.to_csv(index=False, float_format=CSV_FLOAT_FORMAT)
