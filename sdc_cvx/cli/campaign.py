@@ -36,6 +36,7 @@ from .progress import RunProgress, interruptible, open_progress_log
 from .reading import (
     build_scenario,
     check_backend,
+    day_zero,
     read_catalog,
     select_candidates,
     with_raan_rates,
@@ -185,7 +186,7 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
                 folder = folder or new_run_folder(prefix="sdc_campaign_")
                 write_infeasible_campaign(folder, str(err), start_utc=start_utc,
                                           campaign=campaign.to_dict(),
-                                          scenario_toml=scenario.to_toml(),
+                                          scenario_toml=scenario.to_toml(start=day_zero(catalog)),
                                           log=steps.log_text())  # fmt: skip
                 steps.discard_live_log()
             except OSError as write_err:
@@ -206,7 +207,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     try:
         folder = folder or new_run_folder(prefix="sdc_campaign_")
         solution.save(folder, formats=("png", "svg") if svg else ("png",),
-                      scenario_toml=scenario.to_toml(), log=steps.log_text())  # fmt: skip
+                      scenario_toml=scenario.to_toml(start=day_zero(catalog)),
+                      log=steps.log_text())  # fmt: skip
         steps.discard_live_log()
     except (OSError, KeyboardInterrupt) as err:
         steps.discard_live_log()

@@ -135,3 +135,9 @@ def with_raan_rates(catalog: Catalog, scenario: Scenario, echo) -> Catalog:
          f"{len(fitted)} debris in {seconds:.2f} s: {shift.min():+.4f} to {shift.max():+.4f} "
          "deg/day from the J2 rates")  # fmt: skip
     return fitted
+
+
+def day_zero(catalog: Catalog):
+    """The date the catalog's RAANs and day 0 refer to, as a ``datetime`` (None without
+    epochs): kept in the run folder's ``scenario.toml``."""
+    return None if catalog.start is None else catalog.start.to_pydatetime()

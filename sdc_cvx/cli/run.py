@@ -36,6 +36,7 @@ from .progress import RunProgress, interruptible, open_progress_log
 from .reading import (
     build_scenario,
     check_backend,
+    day_zero,
     read_catalog,
     select_candidates,
     with_raan_rates,
@@ -261,8 +262,9 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
     try:
         folder = folder or new_run_folder()
         with interruptible(steps, "certified", "finishing the run folder first") as stopped:
-            write_run(folder, solution, edge_table, scenario_toml=scenario.to_toml(),
-                      catalog=catalog, formats=("png", "svg") if svg else ("png",),
+            write_run(folder, solution, edge_table,
+                      scenario_toml=scenario.to_toml(start=day_zero(catalog)), catalog=catalog,
+                      formats=("png", "svg") if svg else ("png",),
                       log=steps.log_text())  # fmt: skip
         steps.discard_live_log()
         if stopped() and fly_plan:  # the answer is kept; the user asked for no more

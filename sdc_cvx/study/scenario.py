@@ -325,17 +325,20 @@ class Scenario:
             data["vehicle"] = data["mission"].pop("vehicle")
         return data
 
-    def to_toml(self) -> str:
+    def to_toml(self, *, start: datetime | None = None) -> str:
         """The scenario as used, every default filled in and the catalog path absolute.
 
         ``Scenario.load`` of this text gives back an equal scenario.  Values that are
         not set (solver options, None: no time limit, backend's threads and seed;
         ``catalog.start``; candidate filters) are left out and named in a comment,
         which means the same on reading; a ``mip_gap`` of None (the backend's own gap)
-        cannot be written in TOML and reads back as the default 1e-6.
+        cannot be written in TOML and reads back as the default 1e-6.  ``start``: the
+        day 0 the run took where ``catalog.start`` is not set (the latest epoch of the
+        catalog then), written so that a catalog file refreshed since gives the same day 0.
         """
         data = self.to_dict()
-        data["catalog"]["start"] = self.catalog_start  # a TOML datetime, or not set
+        pinned = self.catalog_start is None and start is not None
+        data["catalog"]["start"] = start if pinned else self.catalog_start  # or not set
         data["catalog"]["raan_rates"] = self.catalog_raan_rates
         data["selection"] = dict.fromkeys(TABLE_KEYS["selection"]) | self.selection.to_dict()
         lines = ["# sdc_cvx scenario, as used: every default filled in."]
@@ -352,6 +355,9 @@ class Scenario:
                           if key in values]  # fmt: skip
                 continue
             unset = [key for key, value in values.items() if value is None]
+            if table == "catalog" and pinned:
+                lines.append("# start: not set in the scenario; the catalog's latest epoch at "
+                             "the run, kept")  # fmt: skip
             lines += [f"{key} = {toml_value(value)}" for key, value in values.items()
                       if value is not None]  # fmt: skip
             if unset:

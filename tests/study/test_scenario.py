@@ -284,6 +284,24 @@ def test_to_toml_fills_every_default_and_round_trips(tmp_path, debris_csv):
     assert load(write(elsewhere, text)) == scenario
 
 
+
+def test_to_toml_keeps_the_day_zero_a_run_took(tmp_path, debris_csv):
+    """Found as a user: a run folder's scenario.toml said ``start`` was "not set (the
+    latest epoch)", so running it again after the TLE file was refreshed gave another
+    day 0; the start the run took is now written (one the scenario set stays as set)."""
+    import dataclasses
+    from datetime import datetime
+
+    scenario = load(write(tmp_path, FULL, "full.toml"))
+    assert scenario.catalog_start is None
+    taken = datetime(2020, 5, 26, 8, 51, 28, 399680, tzinfo=UTC)
+    again = load(write(tmp_path, scenario.to_toml(start=taken), "again.toml"))
+    assert again.catalog_start == taken
+    assert dataclasses.replace(again, catalog_start=None) == scenario
+    chosen = scenario.with_overrides(catalog_start="2020-01-01T00:00:00Z")
+    assert load(write(tmp_path, chosen.to_toml(start=taken), "set.toml")) == chosen
+
+
 def test_to_toml_of_the_defaults(tmp_path):
     text = Scenario().to_toml()
     assert "\npath" not in text and "Table 5" in text and "n = 5" in text
