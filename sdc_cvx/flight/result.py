@@ -7,7 +7,10 @@ swapped in, as the run folder itself is):
 - ``maneuvers.csv``: ``epoch_utc, leg, kind, dv_mps, dv_r_mps, dv_t_mps, dv_n_mps,
   dv_x_mps, dv_y_mps, dv_z_mps`` (RTN: radial, transverse, normal of the state before the
   impulse; x, y, z in GCRF); a low-thrust flight's thrust arcs add ``end_utc,
-  accel_mps2, law`` (empty for its impulses), ``epoch_utc`` being the arc's start;
+  accel_mps2, law`` (empty for its impulses), ``epoch_utc`` being the arc's start (an
+  arc's ``dv_mps`` is its acceleration times its duration; its vectors the thrust
+  integrated, the RTN one in the turning local frame: a net change of velocity far below
+  ``dv_mps`` over several orbits, not a burn's direction);
 - ``rendezvous.csv``: per arrival ``epoch_utc, target, miss_km, miss_mps, da_km, di_deg,
   draan_deg, correction_dv_mps, phasing_shift_h, phasing_dv_mps``, then ``delay_days``
   (the ``arrive`` impulse after the plan's arrival) and ``in_time`` (the corrections done
