@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 
-from ..errors import CatalogError
+from ..errors import CatalogError, CatalogWarning
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
 from .catalog_text import (
     DERIVED_COLUMNS,
@@ -96,6 +97,8 @@ def validate(
     warn_unknown_columns(list(raw.columns), source)
     domain: dict[int, str] = dict(flagged or {})
     columns = _check_rows(raw, source, where, problems, broken or {}, domain)
+    if not problems:
+        _warn_units(columns.numbers, source)
     start_ts = parse_start(start, source, problems)
     if columns.epochs is not None:  # also with other problems: one error says all
         usable = [e for pos, e in enumerate(columns.epochs)
@@ -123,6 +126,23 @@ def validate(
 
 
 # ---------------------------------------------------------------------- checking
+def _warn_units(numbers: dict, source: str) -> None:
+    """A :class:`CatalogWarning` where the values look like other units than the
+    columns': every angle of three rows or more within [0, 2 pi] (radians), or a median
+    semi-major axis above 100,000 km (metres)."""
+    inc, raan, a_km = (np.asarray(numbers.get(k, []), dtype=float)
+                       for k in ("inc_deg", "raan_deg", "a_km"))  # fmt: skip
+    said = []
+    if len(inc) >= 3 and np.nanmax(inc) <= np.pi and np.nanmax(raan) <= 2.0 * np.pi:
+        said.append(f"inc_deg and raan_deg: every value is at most {2.0 * np.pi:.3f}: "
+                    "radians? (degrees are expected)")  # fmt: skip
+    if len(a_km) and np.nanmedian(a_km) > 1e5:
+        said.append(f"a_km: a median of {np.nanmedian(a_km):.6g}: metres? (kilometres are "
+                    "expected)")  # fmt: skip
+    for text in said:
+        warnings.warn(f"{source}: {text}", CatalogWarning, stacklevel=5)
+
+
 @dataclass
 class _Values:
     """Converted values of the required and optional columns, one entry per row."""

@@ -150,8 +150,9 @@ def warn_unknown_columns(columns: list, source: str) -> None:
             hint = f"; the epoch column is named 'epoch' ({EPOCH_EXPECTED})"
         warnings.warn(
             f"{source}, header: unknown column {str(column)!r} is not used (kept as text); "
-            f"the columns read are id, a_km, e, inc_deg, raan_deg and optional name, "
-            f"epoch{hint}",
+            f"the columns read are {', '.join(REQUIRED_COLUMNS)} and optional "
+            f"{', '.join(c for c in KNOWN_COLUMNS if c not in REQUIRED_COLUMNS + DERIVED_COLUMNS)}"
+            f"{hint}",
             CatalogWarning,
             stacklevel=5,  # the caller of Catalog.from_frame, or of a reader
         )

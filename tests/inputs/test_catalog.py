@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 
 import numpy as np
 import pandas as pd
@@ -93,6 +94,31 @@ def test_raan_rate_column_matches_table2(a_km, inc_deg, table2):
 
 
 # ---------------------------------------------------------------------- reading
+def test_the_unknown_column_warning_names_every_column_read(tmp_path):
+    """Found as a user: it named id, a_km, e, inc_deg, raan_deg, name and epoch, not the
+    position on the orbit (arglat_deg, or argp_deg and mean_anomaly_deg) that fly needs."""
+    text = f"{HEADER},arg_lat\n1,7000,0,98,10,5\n"
+    with pytest.warns(CatalogWarning) as said:
+        Catalog.from_csv(write(tmp_path, text))
+    read = str(said[0].message).split("the columns read are")[1]
+    for column in ("id", "a_km", "inc_deg", "name", "epoch", "arglat_deg", "argp_deg",
+                   "mean_anomaly_deg"):  # fmt: skip
+        assert re.search(rf"\b{column}\b", read), column
+
+
+@pytest.mark.parametrize("rows, words", [
+    ("1,7178,0.001,1.71,0.2\n2,7180,0.001,1.72,1.5\n3,7190,0.001,1.70,4.0\n",
+     "inc_deg and raan_deg: every value is at most 6.283: radians"),
+    ("1,7178000,0.001,98,0.2\n2,7180000,0.001,98,100\n3,7190000,0.001,98,200\n",
+     r"a_km: a median of 7.18e\+06: metres"),
+])  # fmt: skip
+def test_values_in_other_units_are_said(tmp_path, rows, words):
+    """Found as a user: inclinations in radians were planned as 1.7 deg orbits, and a_km
+    in metres was only 'dropped: above-leo', with no word on the units."""
+    with pytest.warns(CatalogWarning, match=words):
+        Catalog.from_csv(write(tmp_path, f"{HEADER}\n{rows}"), on_invalid="set aside")
+
+
 def test_csv_ids_stay_strings_and_extra_columns_are_kept(tmp_path):
     text = (
         f"{HEADER},name,norad\n"
