@@ -36,7 +36,7 @@ def plan_altitude(flight: Flight) -> tuple[np.ndarray, np.ndarray]:
         days += [leg.departure_day, leg.departure_day + out, leg.arrival_day - back,
                  leg.arrival_day]  # fmt: skip
         heights += [alt[k], drift, drift, alt[k + 1]]
-    days.append(flight.end_day)
+    days.append(flight.plan.plan_end_day)  # the plan's end, not the flight's
     heights.append(alt[-1])
     return np.array(days), np.array(heights)
 
@@ -68,14 +68,22 @@ def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
     top.set_xticks(legs, [f"leg {k}\n→ {m.target}" for k, m in zip(legs, meetings, strict=True)])
     misses = top.twinx()
     misses.plot(legs, [m.miss_km for m in meetings], "ko", label="miss [km]")
-    misses.set_ylabel("position miss at arrival [km]")
-    misses.set_ylim(bottom=0.0)
+    misses.set_ylabel("position miss after the corrections [km]")
+    found = [m.miss_km for m in meetings if m.miss_km > 0]
+    if found and max(found) > 100.0 * min(found):  # a missed debris beside km-size misses
+        misses.set_yscale("log")
+    else:
+        misses.set_ylim(bottom=0.0)
     handles = top.get_legend_handles_labels()
     extra = misses.get_legend_handles_labels()
     top.legend(handles[0] + extra[0], handles[1] + extra[1], fontsize=9, loc="upper left")
-    top.set_title(f"Flown: {flight.flown_dv_mps:.2f} m/s against the plan's "
-                  f"{flight.plan_dv_mps:.2f} m/s; worst miss {flight.worst_miss_km:.2f} km",
-                  fontsize=11)  # fmt: skip
+    status = flight.status
+    top.set_title(f"Status {status}: {flight.flown_dv_mps:.2f} m/s flown against the "
+                  f"plan's {flight.planned_dv_flown_mps:.2f} m/s"
+                  + ("" if flight.complete else f" ({len(meetings)} of "
+                     f"{len(flight.plan.legs)} legs flown)")
+                  + f"; worst miss {flight.worst_miss_km:.2f} km", fontsize=11,
+                  color="#222222" if status == "flown" else "#b2182b")  # fmt: skip
     days, altitude = flight.altitude_profile()
     bottom.plot(days, altitude, lw=0.3, color="#c6dbef", label="propagated (osculating)")
     bottom.plot(*_orbit_means(days, altitude), lw=1.2, color="#08519c",
@@ -84,6 +92,8 @@ def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
     bottom.plot(plan_days, plan_alt, lw=1.5, color="#d62728", label="plan (mean)")
     for meeting in meetings:
         bottom.axvline(meeting.epoch_s / SECONDS_PER_DAY, color="#999999", lw=0.6, ls=":")
+    bottom.axvline(flight.plan.tmax_days, color="#b2182b", lw=1.0, ls="--",
+                   label=f"T_max {flight.plan.tmax_days:g} d")  # fmt: skip
     bottom.set_xlabel(f"days after {flight.plan.start:%Y-%m-%d %H:%M} UTC")
     bottom.set_ylabel("altitude [km]")
     bottom.legend(fontsize=9, loc="best")
