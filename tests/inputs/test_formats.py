@@ -391,6 +391,8 @@ def test_omm_problems_name_the_record_and_the_field(tmp_path, three_sets):
     records[1]["EPOCH"] = "2020-05-24 07:15"
     del records[2]["MEAN_MOTION"]
     records.append({**omm_fields(*three_sets[0]), "MEAN_ELEMENT_THEORY": "DSST"})
+    # found as a user: osculating elements in GCRF were read as SGP4's (TEME) without a word
+    records.append({**omm_fields(*three_sets[0]), "REF_FRAME": "GCRF", "CENTER_NAME": "MOON"})
     path = tmp_path / "bad.json"
     path.write_text(json.dumps(records))
     with pytest.raises(CatalogError) as info:
@@ -401,6 +403,8 @@ def test_omm_problems_name_the_record_and_the_field(tmp_path, three_sets):
         "(UTC), got '2020-05-24 07:15'",
         f"{path}, record 3: missing OMM field(s) MEAN_MOTION",
         f"{path}, record 4, field 'MEAN_ELEMENT_THEORY': expected SGP4 mean elements, got 'DSST'",
+        f"{path}, record 5, field 'REF_FRAME': expected TEME, got 'GCRF'",
+        f"{path}, record 5, field 'CENTER_NAME': expected EARTH, got 'MOON'",
     )
     rows = [omm_fields(*item) for item in three_sets[:2]]
     rows[1]["ECCENTRICITY"] = "1.5"

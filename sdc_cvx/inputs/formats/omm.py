@@ -221,6 +221,10 @@ def _omm_csv(text: str, source: str):
     return records
 
 
+_OMM_FIXED = {"TIME_SYSTEM": "UTC", "REF_FRAME": "TEME", "CENTER_NAME": "EARTH"}
+"""OMM fields that, when given, must have these values for SGP4 mean elements."""
+
+
 def _omm_fields(fields: dict, prefix: str, problems: list[str]):
     """Checked fields as sgp4 strings plus the epoch, or None (problems appended).
 
@@ -239,10 +243,11 @@ def _omm_fields(fields: dict, prefix: str, problems: list[str]):
         problems.append(f"{prefix}, field 'MEAN_ELEMENT_THEORY': expected SGP4 mean elements, "
                         f"got {theory!r}")  # fmt: skip
         ok = False
-    system = fields.get("TIME_SYSTEM")
-    if not _blank(system) and str(system).strip().upper() != "UTC":
-        problems.append(f"{prefix}, field 'TIME_SYSTEM': expected UTC, got {system!r}")
-        ok = False
+    for key, expected in _OMM_FIXED.items():  # SGP4's elements: UTC, TEME, the Earth
+        given = fields.get(key)
+        if not _blank(given) and str(given).strip().upper() != expected:
+            problems.append(f"{prefix}, field '{key}': expected {expected}, got {given!r}")
+            ok = False
     values = dict(_OMM_DEFAULTS)
     values.update({key: value for key, value in fields.items() if not _blank(value)})
     checked = {}
@@ -276,10 +281,11 @@ def read_omm(path: str | os.PathLike, *, start=None, on_invalid: str = "raise") 
     is read as CSV with a header line.  Field names are CelesTrak's / CCSDS's:
     ``NORAD_CAT_ID, EPOCH, MEAN_MOTION, ECCENTRICITY, INCLINATION, RA_OF_ASC_NODE,
     ARG_OF_PERICENTER, MEAN_ANOMALY`` are required; ``OBJECT_NAME, OBJECT_ID, BSTAR,
-    MEAN_MOTION_DOT, ...`` optional.  ``MEAN_ELEMENT_THEORY`` and ``TIME_SYSTEM``, when
-    given, must be SGP4 and UTC.  The elements go through ``sgp4.omm.initialize``,
-    and ``a_km`` follows the same convention as :func:`read_tle` (module docstring),
-    so an OMM and the TLE of the same element set give the same catalog.
+    MEAN_MOTION_DOT, ...`` optional.  ``MEAN_ELEMENT_THEORY``, ``TIME_SYSTEM``,
+    ``REF_FRAME`` and ``CENTER_NAME``, when given, must be SGP4, UTC, TEME and EARTH.
+    The elements go through ``sgp4.omm.initialize``, and ``a_km`` follows the same
+    convention as :func:`read_tle` (module docstring), so an OMM and the TLE of the same
+    element set give the same catalog.
 
     Columns are those of :func:`read_tle`; ``name`` is ``OBJECT_NAME``,
     ``intl_designator`` is ``OBJECT_ID`` and ``bstar`` is ``BSTAR`` (0 when absent).
