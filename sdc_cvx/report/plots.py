@@ -73,7 +73,21 @@ def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Fig
     drawn["cost"] = plot_cost(solution)
     if solution.has_history:
         drawn["iterations"] = plot_iterations(solution)
+    line = transfer_line(solution)
+    for fig in drawn.values():
+        if line:
+            fig.suptitle(line, fontsize=9, color="#444444")
     return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
+
+
+def transfer_line(solution: Solution) -> str | None:
+    """A line saying the figures are of a low-thrust plan (None for the paper's impulsive
+    model, which every figure's own title assumes)."""
+    model = solution.mission.transfer_model().describe()
+    if model["transfer"] == "impulsive":
+        return None
+    return (f"low-thrust vehicle, {model['accel_mps2']:.3g} m/s²: spiral, plane change, coast, "
+            "spiral")  # fmt: skip
 
 
 # ---------------------------------------------------------------------- saving
@@ -138,10 +152,11 @@ def save_figures(
     if not solution.has_history:
         del builders["iterations"]
     written = []
+    above = "; ".join(line for line in (title, transfer_line(solution)) if line)
     for name in builders:
         fig = builders[name]()
-        if title:
-            fig.suptitle(title, fontsize=9, color="#444444")
+        if above:
+            fig.suptitle(above, fontsize=9, color="#444444")
         for fmt in formats:
             target = folder / f"{name}.{fmt}"
             write_figure(fig, target, fmt, dpi)  # 0644 under a 022 umask: meant to be shared

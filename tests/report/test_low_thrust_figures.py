@@ -18,3 +18,14 @@ def test_the_raan_gap_closes_at_every_arrival_and_the_spirals_take_time():
         during = (days > leg.departure_day) & (days < leg.departure_day
                                                + leg.phases["spiral_out_days"])  # fmt: skip
         assert during.sum() >= 5 and np.all(np.diff(days) >= 0)
+
+
+def test_every_figure_of_a_low_thrust_run_says_so_and_an_impulsive_one_does_not():
+    """Found as a user: the orbits and cost figures of a low-thrust run read as the
+    paper's impulsive ones."""
+    mission = Mission(n=3, transfer="low-thrust", vehicle={"accel_mps2": 1e-4})
+    drawn = solve(Catalog.paper_case(), mission).plot()
+    assert drawn and all(fig.get_suptitle().startswith("low-thrust vehicle, 0.0001 m/s²")
+                         for fig in drawn.values())  # fmt: skip
+    paper = solve(Catalog.paper_case(), Mission(n=3)).plot()
+    assert all(fig.get_suptitle() == "" for fig in paper.values())
