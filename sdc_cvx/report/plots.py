@@ -73,10 +73,8 @@ def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Fig
     drawn["cost"] = plot_cost(solution)
     if solution.has_history:
         drawn["iterations"] = plot_iterations(solution)
-    line = transfer_line(solution)
     for fig in drawn.values():
-        if line:
-            fig.suptitle(line, fontsize=9, color="#444444")
+        _head(fig, solution)
     return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
 
 
@@ -88,6 +86,14 @@ def transfer_line(solution: Solution) -> str | None:
         return None
     return (f"low-thrust vehicle, {model['accel_mps2']:.3g} m/s²: spiral, plane change, coast, "
             "spiral")  # fmt: skip
+
+
+def _head(fig: Figure, solution: Solution, title: str | None = None) -> None:
+    """The line above a figure: ``title`` (a campaign's mission) and the transfer model
+    where it is not the paper's."""
+    above = "; ".join(line for line in (title, transfer_line(solution)) if line)
+    if above:
+        fig.suptitle(above, fontsize=9, color="#444444")
 
 
 # ---------------------------------------------------------------------- saving
@@ -152,11 +158,9 @@ def save_figures(
     if not solution.has_history:
         del builders["iterations"]
     written = []
-    above = "; ".join(line for line in (title, transfer_line(solution)) if line)
     for name in builders:
         fig = builders[name]()
-        if above:
-            fig.suptitle(above, fontsize=9, color="#444444")
+        _head(fig, solution, title)
         for fmt in formats:
             target = folder / f"{name}.{fmt}"
             write_figure(fig, target, fmt, dpi)  # 0644 under a 022 umask: meant to be shared

@@ -557,8 +557,13 @@ def test_a_low_thrust_gtoc9_flight_meets_every_debris_in_its_plane():
     for meeting in flight.rendezvous:
         assert abs(meeting.draan_deg) < 0.05 and meeting.miss_km < 100.0, meeting
     # the delay is the flight's: its arrive impulse (after spirals flown from measured
-    # states, hours from the phasing's prediction) against the plan's arrival
+    # states, hours from the phasing's prediction) against the plan's arrival; in time when
+    # the corrections were done by the plan's departure from that debris (its end, last)
     arrivals = [m.epoch_s for m in flight.maneuvers if m.kind == "arrive"]
-    for meeting, arrived, leg in zip(flight.rendezvous, arrivals, plan.legs, strict=True):
+    leaves = [leg.departure_day for leg in plan.legs[1:]] + [plan.total_duration_days]
+    for meeting, arrived, leg, leave in zip(flight.rendezvous, arrivals, plan.legs, leaves,
+                                            strict=True):  # fmt: skip
         planned = leg.departure_day + leg.duration_days
         assert meeting.delay_days == pytest.approx(arrived / 86400.0 - planned, abs=1e-9)
+        assert meeting.in_time == (meeting.epoch_s <= leave * 86400.0 + 1.0)
+    assert not flight.rendezvous[-1].in_time  # its flight ends after T_max (README)
