@@ -1,21 +1,14 @@
-"""After the arrival: the impulses that close what the transfer left (issue 26, item 3).
+"""Small impulses of a low-thrust flight: its trims, its arrival onto an averaged orbit, the
+along-track gap after the arrival (issue 26); and the orbit averages they measure.
 
-The arrival impulse puts the vehicle on the debris' semi-major axis; what is left is the
-orbit's shape and plane, which the planner's circular model does not see.  Most of the
-shape is changed on the way at no cost (:func:`node_split`: the transfers' impulses are
-shared unequally between their two nodes); what is left:
+- :func:`trim` / :func:`trim_epochs`: a tangential impulse that sets a coast's mean
+  motion, at fractions of the coast left (:data:`TRIMS`);
+- :func:`aim_at`: the velocity whose orbit averages to a semi-major axis (one-orbit
+  shots: a mean element taken as an osculating one would miss by kilometres);
+- :func:`correct_phase`: the along-track gap closed over a few orbits.
 
-- :func:`correct_eccentricity`: the mean eccentricity vectors of the vehicle and the
-  debris differ by ``dE`` (the debris' own eccentricities, about 0.004 for the SSO rocket
-  bodies).  Two tangential impulses half an orbit apart, of ``+-v |dE| / 4`` where the
-  radius points along ``+-dE``, close it without changing the semi-major axis: a
-  tangential impulse ``dv`` moves the eccentricity vector by ``2 dv / v`` along the
-  radius (Vallado [1]_ §6.3, near-circular orbits), the cheapest way, ``v |dE| / 2``.
-- :func:`correct_plane`: a rotation onto the debris' plane where the vehicle crosses it;
-- :func:`correct_phase`: the along-track gap, closed over a few orbits.
-
-What is left (``miss_km``: hundreds of metres to kilometres) is the proximity
-operations' (not modelled).  SI units.
+An impulsive leg needs none of them: its guidance (:mod:`~sdc_cvx.flight.guidance`)
+re-plans from measured states and targets the arrival in the force model.  SI units.
 
 References
 ----------
@@ -27,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..physics.impulses import rotated_into, with_horizontal_speed
+from ..physics.impulses import with_horizontal_speed
 from ..physics.orbits import SECONDS_PER_DAY
 from .propagation import ForceModel, averaged_orbit, propagate
 from .rates import SAMPLES, mean_state, propagated_mean_state
@@ -91,23 +84,6 @@ def in_node_frame(vector, normal, pole) -> np.ndarray:
     return np.array([np.dot(vector, node), np.dot(vector, np.cross(normal, node))])
 
 
-def node_split(da_over_a: float, along_node: float, at_node_sign: float) -> float:
-    """The tangential impulse at a node [in units of v] of a Hohmann transfer that also
-    moves the eccentricity vector by ``along_node`` along the node line.
-
-    Two tangential impulses ``dv1, dv2`` half an orbit apart at the nodes change
-    ``a`` by ``da / a = 2 (dv1 + dv2) / v`` and the eccentricity vector by
-    ``2 (dv1 - dv2) / v`` along the radius of the first (``at_node_sign``: +1 at the
-    ascending node, -1 at the descending one).  So ``dv1 = v (da/a + s de) / 4`` and the
-    transfer costs ``v max(|da/a|, |de|) / 2``: as much as the plain Hohmann transfer as
-    long as ``|de| <= |da/a|``, which is where ``along_node`` is clipped to (the rest is
-    left to the corrections).  Returns ``dv1 / v``.
-    """
-    room = abs(da_over_a)
-    de = float(np.clip(along_node, -room, room))
-    return 0.25 * (da_over_a + at_node_sign * de)
-
-
 def trim_epochs(start: float, t_leave: float):
     """The epochs [s] of the trims of a coast from ``start`` to ``t_leave`` (:data:`TRIMS`;
     none in its first half day nor in its last quarter day)."""
@@ -142,63 +118,6 @@ def aim_at(track: Track, model: ForceModel, pole, a_goal, normal) -> np.ndarray:
         # vis-viva: d(a) = 2 a^2 v d(v) / mu
         speed += (a_goal - averaged.a) * model.mu / (2.0 * averaged.a**2 * speed)
     return with_horizontal_speed(track.r, track.v, normal, speed)
-
-
-def correct_eccentricity(track: Track, leg: int, wanted, model: ForceModel,
-                         pole) -> list[Maneuver]:  # fmt: skip
-    """The two tangential impulses that give the vehicle the mean eccentricity vector
-    ``wanted`` (GCRF; its part in the vehicle's plane)."""
-    delta = wanted - mean_eccentricity(track, model, pole)
-    delta -= np.dot(delta, track.normal) * track.normal  # in the plane
-    size = float(np.linalg.norm(delta))
-    if size < SMALLEST_DE:
-        return []
-    across = np.cross(track.normal, delta / size)
-
-    def aligned(t, r, v):
-        return float(np.dot(r, across))
-
-    arc = propagate(track.r, track.v, track.t, track.t + 1.6 * _period(track, model), model,
-                    pole=pole, events=[aligned])  # fmt: skip
-    done = []
-    for t, r in zip(arc.t_events[0], arc.r_events[0], strict=True):
-        if t <= track.t or (not done and np.dot(r, delta) <= 0.0):
-            continue  # the first impulse where the radius points along +dE
-        track.coast(float(t), model, pole)
-        sign = 1.0 if np.dot(track.r, delta) > 0.0 else -1.0
-        r_hat = track.r / np.linalg.norm(track.r)
-        horizontal = np.linalg.norm(track.v - np.dot(track.v, r_hat) * r_hat)
-        speed = horizontal + sign * 0.25 * np.linalg.norm(track.v) * size
-        done.append(track.impulse(leg, "correction",
-                                  with_horizontal_speed(track.r, track.v, track.normal, speed)))
-        if len(done) == 2:
-            break
-    return done
-
-
-def correct_plane(track: Track, leg: int, ephemeris, target: int, model: ForceModel,
-                  pole) -> Maneuver | None:  # fmt: skip
-    """Turn onto the debris' plane where the vehicle next crosses it (within half an orbit;
-    the plane is the debris' osculating one then: side by side, their short-period terms
-    are the same)."""
-    r_d, v_d = ephemeris.state(target, np.array([track.t]))
-    normal = np.cross(r_d[0], v_d[0])
-    normal /= np.linalg.norm(normal)
-    period = 2.0 * np.pi * np.sqrt(np.linalg.norm(track.r) ** 3 / model.mu)
-
-    def crossing(t, r, v):
-        return float(np.dot(r, normal))
-
-    arc = propagate(track.r, track.v, track.t, track.t + 0.6 * period, model, pole=pole,
-                    events=[crossing])  # fmt: skip
-    later = [t for t in arc.t_events[0] if t > track.t + 60.0]  # not one it is on now
-    if not later:
-        return None
-    track.coast(float(later[0]), model, pole)
-    r_d, v_d = ephemeris.state(target, np.array([track.t]))
-    normal = np.cross(r_d[0], v_d[0])
-    return track.impulse(leg, "correction",
-                         rotated_into(track.r, track.v, normal / np.linalg.norm(normal)))
 
 
 def correct_phase(track: Track, leg: int, ephemeris, target: int, model: ForceModel, pole,

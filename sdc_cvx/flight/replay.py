@@ -1,31 +1,29 @@
-"""Fly a plan: phase each leg, place its impulses, propagate the vehicle, meet the real debris.
+"""Fly a plan: each leg guided to its debris, the vehicle propagated, the real debris met.
 
-For each leg (issue 26):
+For each leg, from the debris the vehicle is at (issue 46):
 
-1. **Phasing** (:func:`~sdc_cvx.physics.phasing.phase_leg`): the departure node and the
-   drift radius that bring the vehicle to the debris itself, in the mean-element model,
-   arriving no later than the mission can spare.
-2. **Impulses as vectors** (:mod:`~sdc_cvx.physics.impulses`), each computed from the
-   vehicle's propagated state at its epoch: ``depart`` (onto the transfer orbit),
-   ``drift`` (onto the drift orbit), ``trim`` (the drift's mean motion, so that the
-   vehicle is at the node the phasing has at ``leave_drift``), ``leave_drift``,
-   ``arrive`` (onto the target's orbit); each Hohmann transfer's plane change on its
-   higher-radius impulse (Eq. 13).  ``drift`` and ``arrive`` aim at orbit-*averaged*
-   semi-major axes (the drift's, then the debris' own as SGP4 flies it), by one-orbit
-   shots: a mean element taken as an osculating one would miss by kilometres.  The two
-   impulses of each transfer are unequal so that the eccentricity vector moves towards
-   the target's on the way, at no cost within the transfer's ``|da/a|``
-   (:func:`~sdc_cvx.flight.corrections.node_split`): the planner's circular model does
-   not see eccentricities, which differ by up to 0.01 between debris.
-3. **Rendezvous** (:mod:`~sdc_cvx.flight.corrections`): the ``correction`` impulses that
-   close what is left, the eccentricity, the plane, then the along-track gap over a few
-   orbits; the vehicle is then measured against the debris (SGP4, in GCRF): position and
-   velocity miss, and the orbit-averaged differences of a, i and RAAN at the arrival.
-4. The next leg leaves from where the vehicle is, when its corrections are done.
+- an **impulsive** leg is flown by optimised closed-loop guidance
+  (:class:`~sdc_cvx.flight.guidance.LegGuidance`): a multi-impulse rendezvous planned in
+  mean elements (free epochs and vectors, seeded by the plan's leg), flown impulse by
+  impulse with re-plans from the measured state, trimmed on long coasts, its approach
+  targeted in the force model itself: the debris met within metres, its velocity matched;
+- a **low-thrust** leg is phased and flown as thrust arcs
+  (:mod:`~sdc_cvx.flight.thrust_legs`), then its rendezvous closed by correction arcs
+  (:mod:`~sdc_cvx.flight.thrust_corrections`).
 
-The flown ΔV is the sum of the impulses as flown.  Per leg, ``phasing_dv`` is the phased
-leg's cost less the plan point's, both in the mean-element model of the flight, and
-``correction_dv`` the rest: plan + phasing + correction = flown, leg by leg.
+The schedule: a leg leaves when the vehicle is ready, at the plan's departure moved by
+how early or late the previous arrival was (never before it); it arrives at the latest by
+the plan's arrival plus what the mission's T_max leaves over; a leg of the plan shorter
+than :data:`MIN_FLIGHT_DAYS` (RAANs that meet on the previous arrival's day: the plan's
+zero-length legs) gets that long, the legs after it absorbing the delay.  Between a
+rendezvous and the next departure (the plan's stay, at least :data:`MIN_STAY_S`) the
+vehicle coasts in the force model: the proximity operations of a stay are not modelled,
+and every arc of the trajectory files is one a J2 replay reproduces.
+
+The flown ΔV is the sum of the impulses (and arcs) as flown.  Per leg, ``phasing_dv`` is
+the guided leg's planned cost (impulsive: the mean-element rendezvous; low thrust: the
+phased leg in the mean model) less the plan's, and ``correction_dv`` the rest: plan +
+phasing + correction = flown, leg by leg.
 
 References
 ----------
@@ -42,32 +40,13 @@ import time
 import numpy as np
 import pandas as pd
 
-from ..physics.elements import secular_rates
-from ..physics.impulses import (
-    inclination,
-    plane_towards,
-    plane_with_inclination,
-    with_horizontal_speed,
-)
 from ..physics.orbits import SECONDS_PER_DAY
-from ..physics.phasing import MeanOrbit, leg_at, phase_leg
+from ..physics.phasing import MeanOrbit
 from . import thrust_legs
-from .corrections import (
-    aim_at,
-    correct_eccentricity,
-    correct_phase,
-    correct_plane,
-    debris_eccentricity,
-    debris_orbit,
-    eccentricity_vector,
-    in_node_frame,
-    mean_eccentricity,
-    node_split,
-    trim,
-    trim_epochs,
-)
-from .ephemeris import DebrisEphemeris
-from .frames import earth_pole_gcrf
+from .corrections import debris_orbit
+from .ephemeris import debris_ephemeris
+from .frames import earth_pole_gcrf, equatorial_basis
+from .guidance import GuidanceError, LegGuidance, LegWindow
 from .plan import FlightPlan
 from .propagation import ForceModel, averaged_orbit, orbit_average
 from .rates import (
@@ -88,15 +67,21 @@ from .thrust_corrections import (
 from .track import Track
 
 CORRECTION_DAYS = 0.6
-"""Time the corrections after an arrival take [days] (about 7 orbits): a leg followed by
-less stay at its debris aims to arrive that much earlier."""
+"""Time a low-thrust leg's corrections after its arrival take [days] (about 7 orbits): a
+leg followed by less stay at its debris aims to arrive that much earlier."""
 HOPELESS_DAYS = 30.0
 """A leg that cannot arrive within this many days after T_max is not flown."""
+MIN_STAY_S = 60.0
+"""A leg leaves at least this long [s] after the last arrival: the state at a rendezvous
+epoch is the rendezvous', not the next departure's."""
+MIN_FLIGHT_DAYS = 10.0
+"""Flight time [days] a leg of the plan shorter than this gets (a zero-length leg's
+rendezvous needs weeks to phase cheaply; measured in ``benchmarks/flight.py``)."""
 
 
 def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris=None,
         progress=None) -> Flight:  # fmt: skip
-    """Fly ``plan`` through its phased impulses against the debris propagated by SGP4.
+    """Fly ``plan`` against its debris' ephemeris (module docstring).
 
     Parameters
     ----------
@@ -104,12 +89,14 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
     force : {"j2", "j2-j4", "j2-j4-drag"}
         The vehicle's force model (:meth:`ForceModel.named`).
     rates : {"fitted", "model"}
-        The mean rates the phasing uses (:mod:`~sdc_cvx.flight.rates`): measured on the
-        debris' SGP4 states and a propagation of the drift orbit, or the first-order J2
-        rates of the catalog's elements (the planner's).
-    ephemeris : DebrisEphemeris, optional
-        Where the debris are: default SGP4 from the catalog's elements; anything with
-        its ``state(position, seconds)``, ``arglat_at_start()`` and ``a_m`` will do.
+        The mean rates the guidance uses (:mod:`~sdc_cvx.flight.rates`): measured in the
+        force model (the drift orbit's) and on the debris' ephemeris (the default), or the
+        first-order J2 rates of the model (the planner's: the replay then shows what
+        they miss).
+    ephemeris : optional
+        Where the debris are: default the catalog's own (:func:`debris_ephemeris`: SGP4,
+        or GTOC9's); anything with ``state(position, seconds)``, ``arglat_at_start()``,
+        ``a_m`` and ``pole_at(seconds)`` will do.
     progress : callable, optional
         Called with a line of text after each leg.
 
@@ -123,125 +110,175 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
     model = ForceModel.named(force)
     consts = dict(j2=model.j2, mu=model.mu, r_eq=model.r_eq)
     if ephemeris is None:
-        ephemeris = DebrisEphemeris.from_catalog(plan.catalog)
-    frame = plan.catalog.frame
-    arglat0 = ephemeris.arglat_at_start()
-    orbits = [MeanOrbit.from_elements(row.a_km * 1e3, row.e, np.radians(row.inc_deg),
-                                      np.radians(row.raan_deg), arglat0[k], **consts)
-              for k, row in enumerate(frame.itertuples())]  # fmt: skip
-    ids = frame["id"].astype(str).tolist()
-    bounds = tuple(model.r_eq + 1e3 * h for h in plan.drift_altitude_km)
+        ephemeris = debris_ephemeris(plan.catalog, low_thrust=plan.accel_mps2 is not None)
+    ids = plan.catalog.frame["id"].astype(str).tolist()
     slack = max(plan.tmax_days - plan.plan_end_day, 0.0) * SECONDS_PER_DAY
     t0 = plan.legs[0].departure_day * SECONDS_PER_DAY
     r0, v0 = ephemeris.state(0, np.array([t0]))
     track = Track(t0, r0[0], v0[0])
     maneuvers, meetings = [], []
-    delay = 0.0  # how much later than the plan the phased leg arrives [s]
+    delay = 0.0  # how much later than the plan the last leg arrived [s]
     notes = list(plan.notes)  # first: the last note says why a flight is incomplete
+    if plan.accel_mps2 is not None and getattr(plan.catalog, "ephemeris", "") == "gtoc9":
+        notes.append("a low-thrust flight meets GTOC9's debris as SGP4 sets of their elements "
+                     "(it closes by co-orbiting, which GTOC9's ephemeris allows no J2 orbit)")
     for k, leg in enumerate(plan.legs):
         t_ready = max(leg.departure_day * SECONDS_PER_DAY + delay, track.t)
-        pole = _pole(plan, t_ready + 0.5 * leg.duration_days * SECONDS_PER_DAY)
-        a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
-        # the plan's arrival, less the corrections' time where the plan has no operations to
-        # hide them in; the mission's slack is spent only when that date cannot be kept
-        # (spending it early, for a cheaper leg, leaves none to the legs after)
-        stay = (plan.legs[k + 1].departure_day if k + 1 < len(plan.legs)
-                else plan.plan_end_day) - leg.arrival_day  # fmt: skip
-        on_time = (leg.arrival_day - max(CORRECTION_DAYS - stay, 0.0)) * SECONDS_PER_DAY
-        latest = on_time + slack
-        origin = _vehicle_orbit(track, orbits[k], model, pole)
-        target, factors = placed_orbit(ephemeris, k + 1, t_ready, orbits[k + 1], model,
-                                       pole), (1.0, 1.0)  # fmt: skip
-        if rates == "fitted":
-            target = fitted_orbit(ephemeris, k + 1, t_ready, latest + SECONDS_PER_DAY, target,
-                                  model, pole)  # fmt: skip
-            factors = drift_factors(a_plan, i_plan, t_ready, model, pole)
-        consts["drift_factors"] = factors
+        if plan.accel_mps2 is None:  # never the last arrival's epoch (its state is the check)
+            t_ready = max(t_ready, track.t + (MIN_STAY_S if k else 0.0))
+        pole = _pole(plan, ephemeris, t_ready + 0.5 * leg.duration_days * SECONDS_PER_DAY)
         if plan.accel_mps2 is None:
-            step = _phase(origin, target, t_ready, leg, bounds, on_time, latest, consts)
+            track.coast(t_ready, model, pole)  # the stay: proximity operations not modelled
+        if plan.accel_mps2 is None:
+            window = _window(plan, k, t_ready, slack)
+            if window.latest > (plan.tmax_days + HOPELESS_DAYS) * SECONDS_PER_DAY:
+                notes.append(_hopeless(k, ids, window.latest, plan))
+                break
+            try:
+                flown = _guided(track, k, leg, window, ephemeris, model, pole, rates)
+            except GuidanceError as err:
+                notes.append(f"leg {k + 1} ({ids[k]} -> {ids[k + 1]}): {err}: not flown, nor "
+                             "the legs after it")  # fmt: skip
+                break
         else:
-            step = thrust_legs.phase(origin, target, t_ready, leg, plan.accel_mps2, factors,
-                                     bounds, on_time, latest, _physics(consts))  # fmt: skip
-        if step["note"]:
-            notes.append(f"leg {k + 1}: {step['note']}")
-        if step["arrive"] > (plan.tmax_days + HOPELESS_DAYS) * SECONDS_PER_DAY:
-            notes.append(f"leg {k + 1} ({ids[k]} -> {ids[k + 1]}) cannot arrive before day "
-                         f"{step['arrive'] / SECONDS_PER_DAY:.0f} (T_max {plan.tmax_days:g}): "
-                         "not flown, nor the legs after it")  # fmt: skip
-            break
-        flown = _fly_leg(track, k, step, origin, plan.accel_mps2, factors, ephemeris, model,
-                         pole)  # fmt: skip
+            flown = _thrust_leg(track, k, t_ready, plan, ephemeris, model, pole, rates, slack,
+                                consts, notes)  # fmt: skip
+            if flown is None:
+                break
         maneuvers += flown["maneuvers"]
         meeting = flown["meeting"]
-        # phasing: the phased leg's model cost less the plan point's (same model, same
-        # orbits); correction: whatever else the flight took, so that plan + phasing +
-        # correction = flown, leg by leg
-        phasing = step["model_dv"] - step["point_dv"]
+        phasing = flown["model_dv"] - flown["point_dv"]
         correction = sum(m.dv_mps for m in flown["maneuvers"]) - leg.dv_mps - phasing
-        # as flown: the arrive impulse against the plan's arrival, and the corrections
-        # done by the plan's departure from the debris (the phasing's aim, step["in_time"])
+        # as flown: the arrive impulse against the plan's arrival, and the rendezvous
+        # done by the plan's departure from the debris
         arrived = next(m.epoch_s for m in flown["maneuvers"] if m.kind == "arrive")
         late = (arrived - leg.arrival_day * SECONDS_PER_DAY) / SECONDS_PER_DAY
+        stay = (plan.legs[k + 1].departure_day if k + 1 < len(plan.legs)
+                else plan.plan_end_day) - leg.arrival_day  # fmt: skip
         on_schedule = meeting["epoch_s"] <= (leg.arrival_day + stay) * SECONDS_PER_DAY + 1.0
         meetings.append(Rendezvous(
             target=ids[k + 1], **meeting, correction_dv_mps=correction,
-            phasing_shift_h=float(step["depart"] - t_ready) / 3600.0, phasing_dv_mps=phasing,
+            phasing_shift_h=float(flown["depart"] - t_ready) / 3600.0, phasing_dv_mps=phasing,
             delay_days=late, in_time=bool(on_schedule),
         ))  # fmt: skip
-        # the next leg is ready the phased leg's delay after the plan's departure (a
-        # low-thrust arrival flown hours to days off it leaves the plan's stay at the
-        # debris as it was; the corrections' end bounds it anyway)
-        delay = step["arrive"] - leg.arrival_day * SECONDS_PER_DAY
+        delay = flown["arrive"] - leg.arrival_day * SECONDS_PER_DAY
         if progress is not None:
             progress(f"leg {k + 1}/{len(plan.legs)} {ids[k]} -> {ids[k + 1]}: miss "
-                     f"{meeting['miss_km']:.2f} km, phasing {phasing:+.2f} m/s, correction "
-                     f"{correction:+.2f} m/s, {late:+.2f} d")  # fmt: skip
-    end = track.t + 2.0 * np.pi / orbits[-1].arglat_rate  # one more orbit with the last debris
-    track.coast(end, model, _pole(plan, end))
+                     f"{meeting['miss_km'] * 1e3:.1f} m, phasing {phasing:+.2f} m/s, "
+                     f"correction {correction:+.2f} m/s, {late:+.2f} d")  # fmt: skip
+    end = track.t + 2.0 * np.pi * np.sqrt(ephemeris.a_m[len(meetings)] ** 3 / model.mu)
+    track.coast(end, model, _pole(plan, ephemeris, end))  # one more orbit with the last debris
     if plan.accel_mps2 is not None:  # first: the last note says why a flight is incomplete
         notes.insert(0, thrust_legs.impulse_note(maneuvers, plan.accel_mps2))
     return Flight(plan=plan, maneuvers=tuple(maneuvers), rendezvous=tuple(meetings),
                   segments=tuple(track.segments), force=model, rates=rates, notes=tuple(notes),
-                  seconds=time.perf_counter() - started)  # fmt: skip
+                  seconds=time.perf_counter() - started,
+                  frame=getattr(ephemeris, "frame_name", "GCRF"))  # fmt: skip
 
 
-def _physics(consts: dict) -> dict:
-    return {name: consts[name] for name in ("j2", "mu", "r_eq")}
+def _window(plan: FlightPlan, k: int, t_ready: float, slack: float) -> LegWindow:
+    """Leg ``k``'s window: ready at ``t_ready``, the rendezvous by the plan's arrival plus
+    the mission's ``slack`` [s], and at least :data:`MIN_FLIGHT_DAYS` after ``t_ready``
+    where the plan's leg is shorter or its arrival has passed; aimed at the plan's
+    arrival, or that minimum."""
+    leg = plan.legs[k]
+    t_plan = leg.arrival_day * SECONDS_PER_DAY
+    shortest = t_ready + MIN_FLIGHT_DAYS * SECONDS_PER_DAY
+    aim = t_plan if t_plan - t_ready >= MIN_FLIGHT_DAYS * SECONDS_PER_DAY else shortest
+    return LegWindow(t_ready, max(t_plan + slack, aim), aim)
 
 
-def _phase(origin: MeanOrbit, target: MeanOrbit, t_ready, leg, bounds, on_time, latest,
-           consts) -> dict:  # fmt: skip
-    """The phased impulsive leg: on the plan's date if it can; else within the mission's
-    slack; else late (:func:`~sdc_cvx.physics.phasing.phase_leg`)."""
+def _hopeless(k: int, ids, latest: float, plan: FlightPlan) -> str:
+    return (f"leg {k + 1} ({ids[k]} -> {ids[k + 1]}) cannot arrive before day "
+            f"{latest / SECONDS_PER_DAY:.0f} (T_max {plan.tmax_days:g}): not flown, nor the "
+            "legs after it")  # fmt: skip
+
+
+def _guided(track: Track, k: int, leg, window: LegWindow, ephemeris, model: ForceModel, pole,
+            rates: str) -> dict:  # fmt: skip
+    """Impulsive leg ``k`` by :class:`~sdc_cvx.flight.guidance.LegGuidance`."""
     a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
-    point = leg_at(origin, target, t_ready, a_plan, i_plan, 0, laps=leg.laps, **consts)
-    # the phasing's extra ΔV is over the plan's point in the same model; where that point
-    # does not arrive in time (a co-planar leg, whose RAANs the flight's model has a
-    # hundredth of a degree on the other side: the plan's radius closes them years
-    # later), over the plan's own ΔV
-    point_dv = (float(point["impulses"].sum()) if point["epochs"][3] <= latest
-                else leg.dv_mps)  # fmt: skip
-    note = None
-    try:
-        phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan, laps=leg.laps,
-                                    a_bounds=bounds, latest_arrival=on_time, **consts)
-        if not in_time and latest > on_time:
-            phased, in_time = phase_leg(origin, target, t_ready, a_plan, i_plan,
-                                        laps=leg.laps, a_bounds=bounds,
-                                        latest_arrival=latest, **consts)  # fmt: skip
-        epochs, a_drift, model_dv = phased.epochs, phased.a_drift, phased.dv
-    except ValueError:  # no phasing found: the plan's point, unphased, flown as it is
-        in_time, note = False, "no phasing found; flown unphased"
-        epochs, a_drift, model_dv = point["epochs"], a_plan, float(point["impulses"].sum())
-    return {"epochs": epochs, "a_drift": a_drift, "i_drift": i_plan, "in_time": in_time,
-            "model_dv": model_dv, "point_dv": point_dv,
-            "depart": float(epochs[0]), "arrive": float(epochs[3]), "note": note}  # fmt: skip
+    factors = (drift_factors(a_plan, i_plan, window.t_ready, model, pole)
+               if rates == "fitted" else (1.0, 1.0))  # fmt: skip
+    guidance = LegGuidance(track, k + 1, leg, k + 1, window, ephemeris, model, pole,
+                           equatorial_basis(pole), (factors[0], 1.0, factors[1]))  # fmt: skip
+    flown = guidance.fly()
+    meeting = _met(track, k, ephemeris, model, pole)
+    return {"maneuvers": flown, "meeting": meeting, "model_dv": guidance.first.total_mps,
+            "point_dv": leg.dv_mps, "depart": float(guidance.first.epochs[0]),
+            "arrive": float(track.t)}  # fmt: skip
 
 
-def _pole(plan: FlightPlan, t: float) -> np.ndarray:
-    """Earth's rotation axis in GCRF at ``t`` [s after day 0] (constant over a leg: it
-    moves about 1e-4 rad a year)."""
-    return earth_pole_gcrf(plan.start + pd.to_timedelta([t], unit="s"))[0]
+def _met(track: Track, k: int, ephemeris, model: ForceModel, pole) -> dict:
+    """The rendezvous with debris ``k + 1`` as measured now: the distance and the velocity
+    difference, and the orbit-averaged a, i and RAAN differences."""
+    r_goal, v_goal = debris_orbit(ephemeris, k + 1, track.t, model)
+    goal_orbit = orbit_average(r_goal, v_goal, mu=model.mu, pole=pole)
+    r_d, v_d = ephemeris.state(k + 1, np.array([track.t]))
+    return _differences(track, goal_orbit, model, pole) | {
+        "epoch_s": track.t,
+        "miss_km": float(np.linalg.norm(track.r - r_d[0]) / 1e3),
+        "miss_mps": float(np.linalg.norm(track.v - v_d[0])),
+    }
+
+
+def _thrust_leg(track: Track, k: int, t_ready: float, plan: FlightPlan, ephemeris,
+                model: ForceModel, pole, rates: str, slack: float, consts: dict,
+                notes: list) -> dict | None:  # fmt: skip
+    """Low-thrust leg ``k``, ready at ``t_ready`` [s]: phased, flown as thrust arcs, its
+    rendezvous corrected; None (a note said why) when it cannot arrive near T_max."""
+    leg = plan.legs[k]
+    ids = plan.catalog.frame["id"].astype(str).tolist()
+    arglat0 = ephemeris.arglat_at_start()
+    rows = plan.catalog.frame.iloc[[k, k + 1]]
+    orbits = [MeanOrbit.from_elements(row.a_km * 1e3, row.e, np.radians(row.inc_deg),
+                                      np.radians(row.raan_deg), arglat0[k + j], **consts)
+              for j, row in enumerate(rows.itertuples())]  # fmt: skip
+    bounds = tuple(model.r_eq + 1e3 * h for h in plan.drift_altitude_km)
+    a_plan, i_plan = leg.drift_a_km * 1e3, np.radians(leg.drift_inc_deg)
+    stay = (plan.legs[k + 1].departure_day if k + 1 < len(plan.legs)
+            else plan.plan_end_day) - leg.arrival_day  # fmt: skip
+    on_time = (leg.arrival_day - max(CORRECTION_DAYS - stay, 0.0)) * SECONDS_PER_DAY
+    latest = on_time + slack
+    origin = _vehicle_orbit(track, orbits[0], model, pole)
+    target, factors = placed_orbit(ephemeris, k + 1, t_ready, orbits[1], model, pole), (1.0, 1.0)
+    if rates == "fitted":
+        target = fitted_orbit(ephemeris, k + 1, t_ready, latest + SECONDS_PER_DAY, target,
+                              model, pole)  # fmt: skip
+        factors = drift_factors(a_plan, i_plan, t_ready, model, pole)
+    step = thrust_legs.phase(origin, target, t_ready, leg, plan.accel_mps2, factors, bounds,
+                             on_time, latest, consts)  # fmt: skip
+    if step["note"]:
+        notes.append(f"leg {k + 1}: {step['note']}")
+    if step["arrive"] > (plan.tmax_days + HOPELESS_DAYS) * SECONDS_PER_DAY:
+        notes.append(_hopeless(k, ids, step["arrive"], plan))
+        return None
+    r_goal, v_goal = debris_orbit(ephemeris, k + 1, step["arrive"], model)
+    goal_orbit = orbit_average(r_goal, v_goal, mu=model.mu, pole=pole)
+    out = thrust_legs.fly_leg(track, k + 1, step["phased"], goal_orbit, plan.accel_mps2, model,
+                              pole, ephemeris)  # fmt: skip
+    differences = _differences(track, goal_orbit, model, pole)
+    for correct in (thrust_eccentricity, thrust_plane, thrust_semi_major_axis, thrust_phase):
+        out += correct(track, k + 1, ephemeris, k + 1, plan.accel_mps2, model, pole)
+    r_d, v_d = ephemeris.state(k + 1, np.array([track.t]))
+    meeting = differences | {
+        "epoch_s": track.t,  # the rendezvous: the vehicle on the debris' orbit
+        "miss_km": float(np.linalg.norm(track.r - r_d[0]) / 1e3),
+        "miss_mps": float(np.linalg.norm(track.v - v_d[0])),
+    }
+    return {"maneuvers": [m for m in out if m is not None], "meeting": meeting,
+            "model_dv": step["model_dv"], "point_dv": step["point_dv"],
+            "depart": step["depart"], "arrive": step["arrive"]}  # fmt: skip
+
+
+def _pole(plan: FlightPlan, ephemeris, t: float) -> np.ndarray:
+    """The axis J2 is about at ``t`` [s after day 0], held over a leg: the Earth's rotation
+    axis in GCRF (it moves about 1e-4 rad a year), or GTOC9's z axis
+    (``ephemeris.pole_at``; an ephemeris without one is in the GCRF)."""
+    pole_at = getattr(ephemeris, "pole_at", None)
+    if pole_at is None:
+        return earth_pole_gcrf(plan.start + pd.to_timedelta([t], unit="s"))[0]
+    return np.asarray(pole_at(t), dtype=float)
 
 
 def _vehicle_orbit(track: Track, guess: MeanOrbit, model: ForceModel, pole) -> MeanOrbit:
@@ -254,131 +291,6 @@ def _vehicle_orbit(track: Track, guess: MeanOrbit, model: ForceModel, pole) -> M
                          arglat=now.arglat - mine.arglat_rate * now.t)
 
 
-def _tangential(track: Track, normal, a_to, a_from, de_along_node, model, pole):
-    """The first impulse of a transfer from ``a_from`` to ``a_to`` [m] (mean), tangential,
-    that also moves the eccentricity vector by ``de_along_node`` along the node line
-    (:func:`~sdc_cvx.flight.corrections.node_split`); in the plane ``normal``."""
-    r_hat = track.r / np.linalg.norm(track.r)
-    radial = np.dot(track.v, r_hat)
-    horizontal = np.linalg.norm(track.v - radial * r_hat)
-    node = np.cross(pole, track.normal)
-    sign = 1.0 if np.dot(r_hat, node) >= 0.0 else -1.0  # at the ascending node or not
-    speed = np.linalg.norm(track.v)
-    dv = speed * node_split((a_to - a_from) / a_from, de_along_node, sign)
-    return with_horizontal_speed(track.r, track.v, normal, horizontal + dv)
-
-
-def _drift(track: Track, leg: int, t_leave: float, factors, model: ForceModel,
-           pole) -> list:  # fmt: skip
-    """Coast on the drift orbit to ``t_leave`` [s], trimming its mean motion on the way so
-    that the vehicle is at the node there, as the phasing has it
-    (:data:`~sdc_cvx.flight.corrections.TRIMS`).
-
-    At each trim the vehicle's mean state (one orbit averaged) and its measured rates
-    predict its argument of latitude at ``t_leave``; a tangential impulse changes the
-    semi-major axis by ``da = -2/3 a d(n) / n`` so that it reaches the nearest node
-    (a multiple of pi) instead: millimetres per second, where an error of 1e-7 in the mean
-    motion would put the vehicle 10 km off after half a year of coasting.
-    """
-    trims = []
-    for t_trim in trim_epochs(track.t, t_leave):
-        track.coast(t_trim, model, pole)
-        now = propagated_mean_state(track.r, track.v, track.t, model, pole)
-        rate = secular_rates(now.a, 0.0, now.inc, j2=model.j2, mu=model.mu,
-                             r_eq=model.r_eq).arglat * factors[1]  # fmt: skip
-        predicted = now.arglat + rate * (t_leave - now.t)
-        error = np.pi * np.round(predicted / np.pi) - predicted
-        da = -2.0 / 3.0 * now.a * (error / (t_leave - track.t)) / rate
-        trims.append(trim(track, leg, da, now.a))
-    track.coast(t_leave, model, pole)
-    return trims
-
-
-def _fly_leg(track: Track, k, step: dict, origin: MeanOrbit, accel, factors, ephemeris,
-             model: ForceModel, pole) -> dict:  # fmt: skip
-    """Leg ``k`` as ``step`` phased it (impulses, or thrust arcs when ``accel`` is given),
-    the rendezvous and the correction."""
-    # the target's orbit as SGP4 flies it, averaged over the orbit after the rendezvous
-    r_goal, v_goal = debris_orbit(ephemeris, k + 1, step["arrive"], model)
-    goal_orbit = orbit_average(r_goal, v_goal, mu=model.mu, pole=pole)
-    if accel is None:
-        goal_e = in_node_frame(np.mean(eccentricity_vector(r_goal, v_goal, mu=model.mu),
-                                       axis=0), goal_orbit.normal, pole)  # fmt: skip
-        out = _impulses(track, k + 1, step["epochs"], origin, step["a_drift"], step["i_drift"],
-                        goal_orbit, goal_e, factors, model, pole)  # fmt: skip
-    else:
-        out = thrust_legs.fly_leg(track, k + 1, step["phased"], goal_orbit, accel, model, pole,
-                                  ephemeris)  # fmt: skip
-    return _rendezvous(track, k, out, goal_orbit, ephemeris, model, pole, accel)
-
-
-def _impulses(track: Track, leg, epochs, origin: MeanOrbit, a_drift, i_drift, goal_orbit,
-              goal_e, factors, model: ForceModel, pole) -> list:  # fmt: skip
-    """The four impulses of an impulsive leg at ``epochs``, and the drift's trims."""
-    out = []
-    up_first = a_drift >= origin.a  # the plane change on the higher-radius impulse (Eq. 13)
-    track.coast(epochs[0], model, pole)
-    # the eccentricity: along the node line now, and along it again after the drift has
-    # turned the apsides by `turn` (node_split: free within the transfers' room)
-    turn = secular_rates(a_drift, 0.0, i_drift, j2=model.j2, mu=model.mu,
-                         r_eq=model.r_eq).argp * (epochs[2] - epochs[1])  # fmt: skip
-    now_e = in_node_frame(mean_eccentricity(track, model, pole), track.normal, pole)
-    rotation = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
-    wanted = goal_e - rotation @ now_e
-    first_de = wanted[1] / np.sin(turn) if abs(np.sin(turn)) > 0.05 else 0.0
-    plane = track.normal
-    if not up_first:  # plane change now, to the drift inclination (its osculating offset kept)
-        goal = inclination(track.r, track.v, pole) + (i_drift - origin.inc)
-        plane = plane_with_inclination(track.r, track.v, pole, goal)
-    out.append(track.impulse(leg, "depart", _tangential(
-        track, plane, a_drift, origin.a, first_de, model, pole)))  # fmt: skip
-    track.coast(epochs[1], model, pole)
-    if up_first:
-        goal = inclination(track.r, track.v, pole) + (i_drift - origin.inc)
-        plane = plane_with_inclination(track.r, track.v, pole, goal)
-    else:
-        plane = plane_towards(track.r, track.v, plane)
-    out.append(track.impulse(leg, "drift", aim_at(track, model, pole, a_drift, plane)))
-    out += _drift(track, leg, epochs[2], factors, model, pole)
-    plane = track.normal
-    if goal_orbit.a < a_drift:  # going down: the plane change on this, higher, impulse
-        plane = plane_towards(track.r, track.v, goal_orbit.normal)
-    drift_e = in_node_frame(mean_eccentricity(track, model, pole), track.normal, pole)
-    out.append(track.impulse(leg, "leave_drift", _tangential(
-        track, plane, goal_orbit.a, a_drift, (goal_e - drift_e)[0], model, pole)))  # fmt: skip
-    track.coast(epochs[3], model, pole)
-    if goal_orbit.a >= a_drift:  # going up: the plane change on this impulse
-        plane = plane_towards(track.r, track.v, goal_orbit.normal)
-    else:
-        plane = track.normal
-    out.append(track.impulse(leg, "arrive", aim_at(track, model, pole, goal_orbit.a, plane)))
-    return out
-
-
-def _rendezvous(track: Track, k, out: list, goal_orbit, ephemeris, model: ForceModel, pole,
-                accel=None) -> dict:  # fmt: skip
-    """The arrival measured, then the corrections that close what is left (a low-thrust
-    vehicle's as thrust arcs, :mod:`~sdc_cvx.flight.thrust_corrections`)."""
-    leg = k + 1
-    differences = _differences(track, goal_orbit, model, pole)
-    if accel is not None:
-        for correct in (thrust_eccentricity, thrust_plane, thrust_semi_major_axis,
-                        thrust_phase):  # fmt: skip
-            out += correct(track, leg, ephemeris, k + 1, accel, model, pole)
-    else:
-        wanted = debris_eccentricity(ephemeris, k + 1, track.t, model)
-        out += correct_eccentricity(track, leg, wanted, model, pole)
-        out.append(correct_plane(track, leg, ephemeris, k + 1, model, pole))
-        out += correct_phase(track, leg, ephemeris, k + 1, model, pole)
-    r_d, v_d = ephemeris.state(k + 1, np.array([track.t]))
-    meeting = differences | {
-        "epoch_s": track.t,  # the rendezvous: the vehicle on the debris' orbit
-        "miss_km": float(np.linalg.norm(track.r - r_d[0]) / 1e3),
-        "miss_mps": float(np.linalg.norm(track.v - v_d[0])),
-    }
-    return {"maneuvers": [m for m in out if m is not None], "meeting": meeting}
-
-
 def _differences(track: Track, goal_orbit, model, pole) -> dict:
     """The vehicle's orbit-averaged a, i and RAAN less the debris' (``goal_orbit``)."""
     mine = averaged_orbit(track.r, track.v, track.t, model, pole=pole, samples=SAMPLES)
@@ -388,5 +300,3 @@ def _differences(track: Track, goal_orbit, model, pole) -> dict:
         "di_deg": float(np.degrees(mine.inc - goal_orbit.inc)),
         "draan_deg": float(np.degrees(draan)),
     }
-
-

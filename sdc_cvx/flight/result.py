@@ -121,6 +121,9 @@ class Flight:
     rates: str
     seconds: float
     notes: tuple[str, ...] = ()
+    frame: str = "GCRF"
+    """The frame of the states and vectors: ``GCRF`` (SGP4 debris), or ``EME2000`` for
+    GTOC9's (its elements' frame, J2 about its z axis)."""
 
     # -- totals ---------------------------------------------------------------------
     @property
@@ -271,6 +274,7 @@ class Flight:
             "tmax_days": self.plan.tmax_days,
             "start": self.plan.start.isoformat(),
             "force": self.force.describe(),
+            "frame": self.frame,
             "rates": self.rates,
             "seconds": self.seconds,
             "propellant": self._propellant_dict(),
@@ -323,12 +327,14 @@ class Flight:
                      json.dumps(self.to_dict(), indent=2, allow_nan=False) + "\n")  # fmt: skip
         segments = [(self.epochs(t), r, v) for t, r, v in self.segments]
         first = self.plan.catalog.frame["id"].iloc[0]
+        pole = ("zonal terms about the true pole of date (TEME z axis) at the middle of each "
+                "leg" if self.frame == "GCRF" else "J2 about the frame's z axis (GTOC9's "
+                "elements' frame, its debris by GTOC9's ephemeris)")  # fmt: skip
         write_oem(folder / "trajectory.oem", segments, object_name="SDC_CVX VEHICLE",
-                  object_id=f"SDC_CVX-{first}",
+                  object_id=f"SDC_CVX-{first}", ref_frame=self.frame,
                   comments=(f"sdc_cvx flown plan {' -> '.join(self.plan.catalog.frame['id'])}",
                             f"force model {_force_text(self.force.describe())}",
-                            "zonal terms about the true pole of date (TEME z axis) at the "
-                            "middle of each leg; manoeuvres (impulses, thrust arcs) in "
+                            f"{pole}; manoeuvres (impulses, thrust arcs) in "
                             "maneuvers.csv"))  # fmt: skip
         from .plot import flight_figure  # matplotlib only when the files are written
 

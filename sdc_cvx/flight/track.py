@@ -29,15 +29,25 @@ class Track:
     r: np.ndarray
     v: np.ndarray
     segments: list = field(default_factory=list)
+    coasting: bool = False
+    """The last segment is a coast no impulse has ended yet: the next coast continues it
+    (the OEM has one segment per arc between impulses)."""
 
     def coast(self, t_end: float, force: ForceModel, pole: np.ndarray) -> None:
-        """Propagate to ``t_end`` [s] and keep the arc's samples as one segment."""
-        if t_end <= self.t:
+        """Propagate to ``t_end`` [s] and keep the arc's samples as one segment (nothing
+        for a coast of under a microsecond: the epochs of the files)."""
+        if t_end <= self.t + 1e-6:
             return
         samples = sample_times(self.t, t_end)
         arc = propagate(self.r, self.v, self.t, t_end, force, pole=pole, t_eval=samples)
-        self.segments.append((arc.t, arc.r, arc.v))
+        if self.coasting and self.segments:  # the same arc, on: its first sample is a repeat
+            t, r, v = self.segments.pop()
+            self.segments.append((np.concatenate([t, arc.t[1:]]), np.vstack([r, arc.r[1:]]),
+                                  np.vstack([v, arc.v[1:]])))
+        else:
+            self.segments.append((arc.t, arc.r, arc.v))
         self.t, self.r, self.v = t_end, arc.r1, arc.v1
+        self.coasting = True
 
     def thrust(self, t_end: float, thrust: Thrust, force: ForceModel, pole: np.ndarray,
                leg: int, kind: str) -> Maneuver | None:  # fmt: skip
@@ -50,6 +60,7 @@ class Track:
                         thrust=thrust)  # fmt: skip
         self.segments.append((arc.t, arc.r, arc.v))
         self.t, self.r, self.v = t_end, arc.r1, arc.v1
+        self.coasting = False
         accel = thrust.acceleration(arc.r, arc.v, pole)
         local = np.einsum("nij,nj->ni", rtn_basis(arc.r, arc.v), accel)  # each sample's RTN
         return Maneuver(start, leg, kind, trapezoid(accel, arc.t, axis=0),
@@ -61,6 +72,7 @@ class Track:
         dv = np.asarray(v_new, dtype=float) - self.v
         maneuver = Maneuver(self.t, leg, kind, dv, rtn(self.r, self.v, dv))
         self.v = np.asarray(v_new, dtype=float)
+        self.coasting = False
         return maneuver
 
     @property

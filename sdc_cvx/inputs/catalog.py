@@ -127,6 +127,12 @@ class Catalog:
         (:mod:`~sdc_cvx.inputs.sgp4_rates`); the planner then takes the debris' rates
         from ``raan_rate_deg_per_day``.  Kept by the methods that return catalogs, and
         by the candidate selection.
+    ephemeris : {"sgp4", "gtoc9"}
+        How the debris move when a plan is flown: ``"sgp4"``, the elements are SGP4's
+        mean elements (TLE, OMM; CSV rows are given SGP4 sets,
+        :mod:`~sdc_cvx.inputs.sgp4_sets`); ``"gtoc9"`` (the GTOC9 reader), GTOC9's
+        osculating elements advanced by the mean motion and the secular J2 rates of the
+        RAAN and the argument of perigee (:class:`sdc_cvx.flight.ephemeris.Gtoc9Ephemeris`).
     """
 
     frame: pd.DataFrame
@@ -134,6 +140,7 @@ class Catalog:
     source: str
     invalid: pd.DataFrame | None = None
     raan_rates: str = "j2"
+    ephemeris: str = "sgp4"
 
     def __post_init__(self):
         if self.raan_rates not in RAAN_RATES:

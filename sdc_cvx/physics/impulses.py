@@ -66,11 +66,6 @@ def plane_with_inclination(r, v, pole, inc) -> np.ndarray:
     return np.cos(theta) * h + np.sin(theta) * side
 
 
-def inclination(r, v, pole) -> float:
-    """Osculating inclination [rad] of the state about ``pole``."""
-    return float(np.arccos(np.clip(np.dot(_unit(np.cross(r, v)), pole), -1.0, 1.0)))
-
-
 def horizontal_velocity(r, normal, speed) -> np.ndarray:
     """Velocity [m/s] of magnitude ``speed`` along ``normal x r_hat`` (no radial part)."""
     return speed * np.cross(normal, _unit(r))
@@ -82,36 +77,6 @@ def with_horizontal_speed(r, v, normal, speed) -> np.ndarray:
     radial velocity (an eccentric orbit's) alone, as a tangential impulse would."""
     r_hat = _unit(r)
     return np.dot(v, r_hat) * r_hat + horizontal_velocity(r, normal, speed)
-
-
-def velocity_on_orbit(r, r_orbit, v_orbit, *, mu) -> np.ndarray:
-    """Velocity [m/s] of the Keplerian orbit through ``(r_orbit, v_orbit)`` at its point in
-    the direction of ``r`` (``r`` projected on its plane): the velocity that puts a vehicle
-    at ``r`` on that orbit, up to the distance between ``r`` and the orbit.
-
-    The perifocal form ``v = sqrt(mu / p) (-sin(nu) P + (e + cos(nu)) Q)`` (Vallado [2]_
-    Eq. 2-110), the periapsis direction ``P`` taken along ``r_orbit`` for a circular orbit.
-    """
-    r_orbit, v_orbit = np.asarray(r_orbit, dtype=float), np.asarray(v_orbit, dtype=float)
-    h_vec = np.cross(r_orbit, v_orbit)
-    h = _unit(h_vec)
-    speed2, radius = np.dot(v_orbit, v_orbit), np.linalg.norm(r_orbit)
-    e_vec = ((speed2 - mu / radius) * r_orbit - np.dot(r_orbit, v_orbit) * v_orbit) / mu
-    e = np.linalg.norm(e_vec)
-    p_hat = e_vec / e if e > 1e-10 else r_orbit / radius
-    q_hat = np.cross(h, p_hat)
-    nu = np.arctan2(np.dot(r, q_hat), np.dot(r, p_hat))
-    semi_latus = np.dot(h_vec, h_vec) / mu
-    return np.sqrt(mu / semi_latus) * (-np.sin(nu) * p_hat + (e + np.cos(nu)) * q_hat)
-
-
-def rotated_into(r, v, normal) -> np.ndarray:
-    """The velocity ``v`` turned about ``r_hat`` into the plane through ``r`` nearest to
-    ``normal``: its radial and horizontal speeds kept (a pure plane change, Eq. 13)."""
-    r_hat = _unit(r)
-    radial = np.dot(v, r_hat)
-    horizontal = np.linalg.norm(np.asarray(v) - radial * r_hat)
-    return radial * r_hat + horizontal_velocity(r, plane_towards(r, v, normal), horizontal)
 
 
 def rtn(r, v, vector) -> np.ndarray:

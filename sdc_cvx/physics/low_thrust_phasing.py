@@ -149,7 +149,7 @@ def low_thrust_leg_at(origin: MeanOrbit, target: MeanOrbit, t_depart, a_drift, i
         Relative laps of the coast beyond the first that closes the RAAN gap.
     drift_factors : (float, float)
         The coast's RAAN and argument-of-latitude rates as flown, over the first-order
-        rates (:func:`~sdc_cvx.physics.phasing.leg_at`).
+        rates (:func:`sdc_cvx.flight.rates.drift_factors`).
 
     Returns
     -------

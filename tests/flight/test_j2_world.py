@@ -2,11 +2,10 @@
 
 The debris here are not SGP4's: they move as the vehicle does, by the same J2 force
 model, from states chosen in the test; the catalog the planner sees holds their mean
-elements, measured on their own propagation.  The model (mean elements, secular rates)
-and the replay then agree but for what the model leaves out (eccentricity, short-period
-terms): the vehicle meets each debris, within kilometres, for metres per second of
-correction.  With the first-order rates instead of the fitted ones the corrections grow:
-the replay sees what the rates miss.
+elements, measured on their own propagation.  The guidance (issue 46) meets each debris
+within a metre and matches its velocity, and its closed loop costs centimetres per
+second.  With the first-order rates instead of the fitted ones its trims and approaches
+grow by metres per second: the flight sees what the rates miss.
 """
 
 from pathlib import Path
@@ -98,25 +97,29 @@ def test_a_plan_flown_among_j2_debris_meets_each_one(world_and_plan):
     flight = fly(FlightPlan.from_solution(solution), ephemeris=world)
     assert len(flight.rendezvous) == 2
     for meeting in flight.rendezvous:
-        assert meeting.miss_km < 2.0, meeting
-        assert abs(meeting.correction_dv_mps) < 2.0, meeting
-        assert abs(meeting.phasing_dv_mps) < 0.05 * solution.total_dv_mps, meeting
+        assert meeting.miss_km < 1e-3 and meeting.miss_mps < 0.1, meeting  # 100 m, 0.1 m/s
+        assert abs(meeting.correction_dv_mps) < 0.5, meeting  # the closed loop's own
+    # the plan's (a, i, RAAN) leg is conservative: the optimised legs cost less (measured
+    # 166.3 m/s for a plan of 178.0)
+    assert flight.flown_dv_mps <= 1.03 * solution.total_dv_mps
     assert flight.flown_dv_mps == pytest.approx(
         flight.plan_dv_mps + sum(m.phasing_dv_mps + m.correction_dv_mps
                                  for m in flight.rendezvous), abs=1e-6)  # fmt: skip
     assert flight.within_tmax
 
 
-def test_first_order_rates_cost_corrections_the_fitted_ones_save(world_and_plan):
-    """With the phasing on first-order rates the vehicle reaches the node, and the target,
-    off the model's dates: the corrections after the arrival (the along-track gap above
-    all) cost several times those of the measured rates."""
+def test_first_order_rates_cost_trims_the_fitted_ones_save(world_and_plan):
+    """Guided on first-order rates, the vehicle drifts off the model's prediction for
+    weeks: its trims and approaches cost tens of times those of the measured rates
+    (measured 5.3 m/s against 0.10 m/s)."""
     world, solution = world_and_plan
     plan = FlightPlan.from_solution(solution)
-    fitted = fly(plan, ephemeris=world)
-    model = fly(plan, ephemeris=world, rates="model")
-    corrections = [sum(m.correction_dv_mps for m in f.rendezvous) for f in (fitted, model)]
-    assert corrections[1] > 3 * corrections[0] > 0
+    spent = []
+    for rates in ("fitted", "model"):
+        flight = fly(plan, ephemeris=world, rates=rates)
+        assert all(meeting.miss_km < 1e-3 for meeting in flight.rendezvous)
+        spent.append(sum(m.dv_mps for m in flight.maneuvers if m.kind in ("trim", "approach")))
+    assert spent[1] > 10 * spent[0] > 0
 
 
 def test_a_flight_says_when_it_did_not_fly_as_planned(world_and_plan):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 
@@ -38,7 +39,9 @@ def read_gtoc9(path: str | os.PathLike, *, start=None, on_invalid: str = "raise"
     [rad], mean anomaly [rad].  A first line that is not numeric (a header) and lines
     starting with ``#`` are skipped.  The epoch is UTC ``2000-01-01 00:00`` + MJD2000
     days (JD = MJD2000 + 2451544.5).  The elements are GTOC9's osculating elements,
-    used as they are (GTOC9 itself propagates them with secular J2 rates only).
+    used as they are (GTOC9 itself propagates them with secular J2 rates only); the
+    catalog's ``ephemeris`` is ``"gtoc9"``: a flight meets the debris where GTOC9 has
+    them.
 
     Columns: ``id`` (the integer id as a string, ``"0"``..``"122"``), ``a_km``, ``e``,
     ``inc_deg``, ``raan_deg`` (at ``start``), ``epoch``, ``argp_deg``,
@@ -93,8 +96,9 @@ def read_gtoc9(path: str | os.PathLike, *, start=None, on_invalid: str = "raise"
     if not rows and not problems:
         problems.append(f"{source}: no GTOC9 debris lines (8 numbers each)")
     _duplicates(rows, where, source, problems)
-    return _catalog(rows, source, start, problems, "GTOC9 debris lines", where=where,
-                    on_invalid=on_invalid, numbered=False)  # fmt: skip
+    catalog = _catalog(rows, source, start, problems, "GTOC9 debris lines", where=where,
+                       on_invalid=on_invalid, numbered=False)  # fmt: skip
+    return dataclasses.replace(catalog, ephemeris="gtoc9")
 
 
 def _gtoc9_float(text: str) -> float | None:
