@@ -96,9 +96,14 @@ class Leg:
     """With a vehicle's dry mass and Isp: ``propellant_kg`` burned by the leg and the
     vehicle's ``mass_before_kg`` and ``mass_after_kg`` [kg]; an impulsive leg's ``burn_s``
     [s] with the vehicle's thrust or acceleration; else empty."""
+    eccentricity_dv_mps: float | None = None
+    """The part of ``dv_mps`` that prices the eccentricity the leg must change [m/s]
+    (:mod:`~sdc_cvx.physics.eccentricity`); None where the legs are circular."""
 
     def to_dict(self) -> dict:
         out = asdict(self)
+        if out["eccentricity_dv_mps"] is None:  # circular legs: the columns they always had
+            del out["eccentricity_dv_mps"]
         out["from"], out["to"] = out.pop("from_id"), out.pop("to_id")
         phases, masses = out.pop("phases"), out.pop("masses")
         return out | phases | masses

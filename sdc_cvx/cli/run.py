@@ -61,6 +61,12 @@ if TYPE_CHECKING:
 @click.option(
     "--min-transfer-days", type=float, default=None, help="Minimum transfer duration [0 days]."
 )
+@click.option("--eccentricity", type=click.Choice(["auto", "on", "off"]), default=None,
+              help="Price the eccentricity each leg must change [auto: where the catalog "
+              "gives each debris' argument of perigee].")
+@click.option("--flight-min-days", type=float, default=None,
+              help="Shortest leg planned, the flight time a rendezvous needs [10 days where "
+              "the debris' positions are known, else 0; 0 turns it off].")
 @click.option("--transfer", type=click.Choice(["impulsive", "low-thrust"]), default=None,
               help="Transfer model: impulsive drift legs, or low-thrust spirals (needs the "
               "vehicle's acceleration: --accel or a [vehicle] table) [impulsive].")
@@ -123,7 +129,8 @@ if TYPE_CHECKING:
 def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, altitude_km,
         inclination_deg,
         max_eccentricity, ids, exclude_ids, names, types, strict, n, tmax_days, deorbit_days,
-        preopt_days, dv_max_mps, min_transfer_days, transfer, accel_mps2, backend, method, gap,
+        preopt_days, dv_max_mps, min_transfer_days, eccentricity, flight_min_days, transfer,
+        accel_mps2, backend, method, gap,
         time_limit_s, mip_gap, threads, fallback, out_dir, quiet, json_out, svg, fly_plan,
         force_model, verbose, progress):  # fmt: skip
     """Select, order and plan the transfers; write solution.json and tables to a run folder.
@@ -152,7 +159,8 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
         catalog_start=start, catalog_raan_rates=raan_rates, n=n, tmax_days=tmax_days,
         deorbit_days=deorbit_days,
         preopt_days=preopt_days, dv_max_mps=dv_max_mps, min_transfer_days=min_transfer_days,
-        transfer=transfer, **{"vehicle.accel_mps2": accel_mps2}, backend=backend,
+        eccentricity=eccentricity, flight_min_days=flight_min_days, transfer=transfer,
+        **{"vehicle.accel_mps2": accel_mps2}, backend=backend,
         method=method, gap=gap, time_limit_s=time_limit_s, mip_gap=mip_gap,
         threads=threads, verbose=verbose or None,
         fallback=tuple(fallback) or None,

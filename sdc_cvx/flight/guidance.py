@@ -222,7 +222,7 @@ class LegGuidance:
         between = plan.epochs[:-1] > self.track.t
         shot = shoot(self.track.r, self.track.v, self.track.t, plan.epochs[:-1][between],
                      plan.dv_rtn[:-1][between], plan.epochs[-1], self.debris.state,
-                     self.force, self.pole)  # fmt: skip
+                     self.force, self.pole, self.window.latest)  # fmt: skip
         if np.linalg.norm(shot.dv_approach) > 0.0:
             self.maneuvers.append(self.track.impulse(self.leg, "approach",
                                                      self.track.v + shot.dv_approach))

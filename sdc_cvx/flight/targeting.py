@@ -74,7 +74,7 @@ def _to_frame(r, v, rtn):
 
 
 def shoot(r0, v0, t0: float, between_epochs, between_rtn, t_arrive: float, debris_state,
-          force: ForceModel, pole) -> Approach:  # fmt: skip
+          force: ForceModel, pole, latest: float = np.inf) -> Approach:  # fmt: skip
     """Shoot the approach from ``(r0, v0)`` at ``t0`` [s] (module docstring).
 
     Parameters
@@ -90,6 +90,8 @@ def shoot(r0, v0, t0: float, between_epochs, between_rtn, t_arrive: float, debri
         ``debris_state(t) -> (r, v)`` of the debris [m, m/s].
     force, pole
         The flight's force model and pole.
+    latest : float
+        The rendezvous no later than this [s] (the leg's window).
     """
     r0, v0 = np.asarray(r0, dtype=float), np.asarray(v0, dtype=float)
     between_epochs = np.asarray(between_epochs, dtype=float).reshape(-1)
@@ -151,8 +153,9 @@ def shoot(r0, v0, t0: float, between_epochs, between_rtn, t_arrive: float, debri
     x0 = np.concatenate([np.zeros(3), seeds.ravel(), [0.0]])
     half = 0.5 * _period(r0, v0, force)
     after = (max(between_epochs.max() if k else t0, t0) + MIN_COAST_S - t_arrive) / TIME_SCALE_S
-    bounds = [(None, None)] * (3 + 3 * k) + [(max(-half / TIME_SCALE_S, after),
-                                              half / TIME_SCALE_S)]
+    before = min(half, latest - t_arrive) / TIME_SCALE_S
+    bounds = [(None, None)] * (3 + 3 * k) + [(min(max(-half / TIME_SCALE_S, after), before),
+                                              max(before, after))]
     result = minimize(lambda x: evaluate(x)[0], x0, jac=lambda x: gradient(x, 0),
                       constraints=[{"type": "eq", "fun": lambda x: evaluate(x)[1],
                                     "jac": lambda x: gradient(x, 1)}],

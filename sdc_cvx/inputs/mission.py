@@ -25,6 +25,13 @@ from ..physics.orbits import J2, R_EARTH
 from .vehicle import Vehicle
 
 DRIFT_INCLINATION_RULES = ("table3", "free")
+ECCENTRICITY_CHOICES = ("auto", "on", "off")
+"""``Mission.eccentricity``: price the eccentricity a leg must change (issue 46) where the
+catalog gives each debris' argument of perigee (``auto``), always, or never."""
+FLIGHT_MIN_DAYS = 10.0
+"""The shortest leg a flight phases cheaply [days] (issue 46, ``benchmarks/flight.py``:
+a zero-length leg of the SSO rocket bodies flown in 5 days costs 1.5 m/s more than its
+12.6 m/s plan, in 10 days 0.1 m/s): the default ``flight_min_days`` where a plan can fly."""
 
 
 INJECTION_MIN_PERIGEE_KM = 150.0
@@ -94,6 +101,17 @@ class Mission:
         The servicing vehicle (:class:`~sdc_cvx.inputs.vehicle.Vehicle`): its
         acceleration for ``transfer = "low-thrust"``, and the propellant and masses of
         the plan when its dry mass and Isp are given.
+    eccentricity : {"auto", "on", "off"}
+        Price the eccentricity each impulsive leg must change
+        (:mod:`~sdc_cvx.physics.eccentricity`): ``auto`` (default) where the catalog
+        gives every debris' argument of perigee (TLE, OMM, GTOC9, a CSV with
+        ``argp_deg``), the paper's circular legs elsewhere (Table 5 keeps 499.99 m/s).
+    flight_min_days : float, optional
+        Legs shorter than this are not planned [days], on top of ``min_transfer_days``:
+        the flight time a rendezvous needs to phase (a zero-length leg, RAANs meeting on
+        an arrival's day, cannot be flown cheaply).  Default: :data:`FLIGHT_MIN_DAYS`
+        where the catalog gives each debris' position on its orbit (an impulsive plan
+        that can fly), 0 elsewhere; 0 turns it off.
     """
 
     n: int = 5
@@ -114,6 +132,8 @@ class Mission:
     injection: tuple[float, float, float, float] | None = None
     transfer: str = "impulsive"
     vehicle: Vehicle | None = None
+    eccentricity: str = "auto"
+    flight_min_days: float | None = None
 
     def __post_init__(self):
         if isinstance(self.vehicle, dict):
@@ -148,6 +168,12 @@ class Mission:
         for name in ("deorbit_days", "operations_dv_mps", "min_transfer_days"):
             if name not in wrong_type and not getattr(self, name) >= 0:
                 yield f"{name} must be >= 0, got {getattr(self, name)!r}"
+        if self.flight_min_days is not None and not (
+                _is_real(self.flight_min_days) and self.flight_min_days >= 0):  # fmt: skip
+            yield f"flight_min_days must be a number >= 0 (or unset), got {self.flight_min_days!r}"
+        if self.eccentricity not in ECCENTRICITY_CHOICES:
+            yield (f"eccentricity must be one of {', '.join(ECCENTRICITY_CHOICES)}, got "
+                   f"{self.eccentricity!r}")  # fmt: skip
         if "tmax_days" not in wrong_type and self.tmax_days > MAX_TMAX_DAYS:
             yield (
                 f"tmax_days must be at most {MAX_TMAX_DAYS:g} days (10 years: the model "
@@ -182,6 +208,13 @@ class Mission:
                 yield (
                     f"n * deorbit_days + (n - 1) * min_transfer_days = {floor:g} days leaves no "
                     f"time for transfers within tmax_days = {self.tmax_days:g}"
+                )
+            flight = self.n * self.deorbit_days + (self.n - 1) * self.shortest_leg_days
+            if floor < self.tmax_days <= flight:
+                yield (
+                    f"n * deorbit_days + (n - 1) * flight_min_days = {flight:g} days leaves no "
+                    f"time for transfers within tmax_days = {self.tmax_days:g}: lower "
+                    "flight_min_days (0 turns it off)"
                 )
 
     def check_candidates(self, ids) -> None:
@@ -254,6 +287,37 @@ class Mission:
                     self.transfer_model()
                 except ValueError as err:  # an acceleration the model does not hold for
                     yield f"transfer = 'low-thrust': {err}"
+
+    @property
+    def shortest_leg_days(self) -> float:
+        """The shortest leg planned [days]: ``min_transfer_days``, or ``flight_min_days``
+        where that is longer (unset: 0 until :meth:`for_catalog` sets it)."""
+        return max(float(self.min_transfer_days), float(self.flight_min_days or 0.0))
+
+    def for_catalog(self, catalog) -> Mission:
+        """The mission with its catalog-dependent defaults set (``eccentricity`` on or
+        off, ``flight_min_days`` a number), as the planner uses it.
+
+        ``eccentricity = "auto"`` is on where every debris of ``catalog`` has an
+        argument of perigee (``argp_deg``); ``flight_min_days`` unset is
+        :data:`FLIGHT_MIN_DAYS` where every debris' position on its orbit and the date
+        of its elements are known (a plan that can fly), 0 elsewhere.
+        """
+        frame = catalog.frame
+        has_argp = "argp_deg" in frame.columns and bool(frame["argp_deg"].notna().all())
+        changes = {}
+        if self.eccentricity == "auto" and self.transfer == "impulsive":
+            changes["eccentricity"] = "on" if has_argp else "off"
+        elif self.eccentricity == "auto":  # the low-thrust leg prices no eccentricity
+            changes["eccentricity"] = "off"
+        if self.flight_min_days is None:
+            placed = has_argp and "mean_anomaly_deg" in frame.columns and bool(
+                frame["mean_anomaly_deg"].notna().all())  # fmt: skip
+            placed |= "arglat_deg" in frame.columns and bool(frame["arglat_deg"].notna().all())
+            dated = catalog.start is not None
+            flies = placed and dated and self.transfer == "impulsive"
+            changes["flight_min_days"] = FLIGHT_MIN_DAYS if flies else 0.0
+        return self.replace(**changes) if changes else self
 
     def transfer_model(self) -> TransferModel:
         """The transfer model of the mission, with the vehicle's acceleration."""
@@ -338,6 +402,11 @@ class Mission:
             del out["vehicle"]
         else:
             out["vehicle"] = self.vehicle.to_dict()
+        # the catalog-dependent defaults, unset, write nothing (a sweep's scenario_sha stays)
+        if self.eccentricity == "auto":
+            del out["eccentricity"]
+        if self.flight_min_days is None:
+            del out["flight_min_days"]
         return out
 
 

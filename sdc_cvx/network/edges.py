@@ -24,6 +24,7 @@ import pandas as pd
 
 from ..inputs.catalog import Catalog
 from ..inputs.mission import Mission
+from ..physics.eccentricity import Eccentricities
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
 from ..physics.transfer import NodeOrbits
 
@@ -51,6 +52,33 @@ def node_orbits(catalog: Catalog, mission: Mission) -> NodeOrbits:
         rate = catalog.frame["raan_rate_deg_per_day"].to_numpy(dtype=float)
         orbits = orbits._replace(rate=np.radians(rate) / SECONDS_PER_DAY)
     return orbits
+
+
+def node_eccentricities(catalog: Catalog, mission: Mission) -> Eccentricities | None:
+    """The catalog's mean eccentricity vectors at the mission start, or None when the
+    mission does not price them (``mission.eccentricity`` resolved off).
+
+    The argument of perigee at the start: the row's ``argp_deg`` at its epoch carried by
+    the first-order J2 apsidal rate (Vallado, Eq. 9-41) for the mission's ``j2``, or as
+    given for a catalog without epochs.  SGP4 element sets (TLE, OMM, CSV) add J3's
+    constant term (:mod:`~sdc_cvx.physics.eccentricity`), GTOC9's do not.  A row without
+    one (the injection orbit) is circular.
+    """
+    if mission.eccentricity != "on":
+        return None
+    frame = catalog.frame
+    argp = (np.radians(frame["argp_deg"].to_numpy(dtype=float)) if "argp_deg" in frame.columns
+            else np.full(len(frame), np.nan))  # fmt: skip
+    e = np.where(np.isfinite(argp), catalog.e, 0.0)
+    rates = Eccentricities.from_elements(catalog.a_m, e, catalog.inc_rad, 0.0, frozen=False,
+                                         j2=mission.j2).argp_rate  # fmt: skip
+    if "epoch" in frame.columns and catalog.start is not None:
+        epochs = pd.to_datetime(frame["epoch"], utc=True)
+        elapsed = (catalog.start - epochs).dt.total_seconds().to_numpy(dtype=float)
+        argp = argp + rates * np.nan_to_num(elapsed)
+    frozen = getattr(catalog, "ephemeris", "sgp4") == "sgp4"
+    return Eccentricities.from_elements(catalog.a_m, e, catalog.inc_rad,
+                                        np.nan_to_num(argp), frozen=frozen, j2=mission.j2)
 
 
 def drift_radius_bounds(mission: Mission) -> tuple[float, float]:

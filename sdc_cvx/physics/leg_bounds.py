@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
+from . import eccentricity
 from .leg_minima import scanned_minimisers
 from .orbits import MU_EARTH, SECONDS_PER_DAY, circular_a_for_raan_rate, raan_rate
 from .transfer import (
@@ -57,6 +58,7 @@ if TYPE_CHECKING:  # the models module imports this one
 
 TWO_PI = 2.0 * np.pi
 INCLINATION_RULES = ("table3", "free")
+
 
 
 @dataclass(frozen=True)
@@ -92,24 +94,30 @@ class LegCosts:
     model: TransferModel = field(default_factory=lambda: IMPULSIVE)
     memo: dict = field(default_factory=dict, repr=False, compare=False)
     """What a transfer model derives once per edge of this table and keeps (its own keys)."""
+    eccentricity: tuple | None = None
+    """``(origin, target)`` :class:`~sdc_cvx.physics.eccentricity.Eccentricities` of the
+    edges: the impulsive leg's cost then prices the eccentricity it must change (issue 46);
+    None, the paper's circular leg."""
 
     @classmethod
     def build(cls, origin: NodeOrbits, target: NodeOrbits, a_low: float, a_high: float, *,
               mu: float = MU_EARTH, chunk: int = 2048, model=None,
-              on_chunk: Callable[[int, int], None] | None = None) -> LegCosts:  # fmt: skip
+              on_chunk: Callable[[int, int], None] | None = None,
+              eccentricity: tuple | None = None) -> LegCosts:  # fmt: skip
         """Scan every edge's cost over the band and keep its possible minimisers.
 
         ``model`` is the transfer model (:mod:`~sdc_cvx.physics.models`; default the
         impulsive drift leg).  ``on_chunk(done, total)`` is called after each ``chunk``
         of edges (the longest step of a large catalog's setup: a clock and a fraction
-        done); it may raise to stop the build.
+        done); it may raise to stop the build.  ``eccentricity``: the edges' ends'
+        :class:`~sdc_cvx.physics.eccentricity.Eccentricities` (attribute of the same name).
         """
         model = IMPULSIVE if model is None else model
         count = len(origin.a)
         candidates = scanned_minimisers(origin, target, a_low, a_high, mu, model, chunk=chunk,
                                         on_chunk=on_chunk)  # fmt: skip
         self = cls(origin, target, float(a_low), float(a_high), candidates,
-                   np.empty(0), mu, model)  # fmt: skip
+                   np.empty(0), mu, model, eccentricity=eccentricity)  # fmt: skip
         edges = np.arange(count)[:, None, None]
         choice = np.arange(2)[None, :, None]
         cost = self.cost(edges, choice, np.where(np.isnan(candidates), a_low, candidates))
@@ -269,6 +277,9 @@ def leg_cost_at(legs: LegCosts, e, t, t_arrive, *, rule: str, j2: float, t_min: 
                 z_lo, z_hi = radius_interval(legs, e, c, side_lo, side_hi, j2=j2)
                 lo, hi = np.where(zero, z_lo, lo), np.where(zero, z_hi, hi)
             value, a = legs.minimum_on(e, c, lo, hi)
+            if legs.eccentricity is not None:
+                value, a = eccentricity.table_cost_at(legs, e, c, value, a, lo, hi, t,
+                                                         t_arrive, j2)  # fmt: skip
             value = np.where(ok & ((duration > 0) | zero), value, np.inf)
             better = value < best
             best = np.where(better, value, best)
@@ -338,7 +349,11 @@ def leg_box_bound(legs: LegCosts, e, t1, t2, t3, t4, *, rule: str, j2: float,
                 r1, r2 = rate_j + side * rho_lo, rate_j + side * rho_hi
                 lo, hi = radius_interval(legs, e, c, np.minimum(r1, r2), np.maximum(r1, r2),
                                          j2=j2)  # fmt: skip
-                value, _ = legs.minimum_on(e, c, lo, hi)
+                if legs.eccentricity is None:
+                    value, _ = legs.minimum_on(e, c, lo, hi)
+                else:
+                    value = eccentricity.table_box_bound(legs, e, c, lo, hi, pa, pb, t3, t4, j2,
+                                                         t_min)  # fmt: skip
                 best = np.where(feasible, np.minimum(best, value), best)
     return best
 

@@ -22,6 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .eccentricity import leg_cost
 from .leg_bounds import IMPULSIVE
 from .orbits import SECONDS_PER_DAY
 from .transfer import NodeOrbits
@@ -35,7 +36,7 @@ class PlanEvaluation(NamedTuple):
     departure_day, duration_days, arrival_day : ndarray
         Leg departure date, coast duration and arrival date [days after t0].
     dv_mps : ndarray
-        Leg cost [m/s].
+        Leg cost [m/s] (the eccentricity priced, where it is).
     end_day : float
         Arrival at the last debris plus its operations [days]: the mission duration.
     """
@@ -45,10 +46,13 @@ class PlanEvaluation(NamedTuple):
     arrival_day: np.ndarray
     dv_mps: np.ndarray
     end_day: float
+    eccentricity_dv_mps: np.ndarray | None = None
+    """The part of ``dv_mps`` that prices each leg's eccentricity [m/s] (None: circular
+    legs, :mod:`~sdc_cvx.physics.eccentricity`)."""
 
 
 def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=0.0, j2,
-                  model=None, laps=0) -> PlanEvaluation:  # fmt: skip
+                  model=None, laps=0, eccentricity=None) -> PlanEvaluation:  # fmt: skip
     """Chain the legs of ``path`` through the true model (Eq. 10-13, or another transfer model).
 
     The vehicle is at ``path[0]`` at t = 0; each leg leaves after the operations at
@@ -71,6 +75,9 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
         The leg physics (:mod:`~sdc_cvx.physics.models`); default the impulsive drift leg.
     laps : int or array_like of int
         Relative laps of each leg's coast beyond the first that closes the RAAN gap.
+    eccentricity : Eccentricities, optional
+        Every debris' mean eccentricity vector: each leg's cost then prices it
+        (:func:`~sdc_cvx.physics.eccentricity.leg_cost`).
 
     Returns
     -------
@@ -95,4 +102,9 @@ def evaluate_plan(orbits: NodeOrbits, path, a_drift, inc_drift, *, deorbit_days=
         ready = arrival[k] + float(ops[path[k + 1]])
     origins, targets = orbits.take(path[:-1]), orbits.take(path[1:])
     dv = model.leg_dv(origins.a, origins.inc, targets.a, targets.inc, a_drift, inc_drift)
-    return PlanEvaluation(departure, duration, arrival, dv, float(ready))
+    if eccentricity is None:
+        return PlanEvaluation(departure, duration, arrival, dv, float(ready))
+    priced = leg_cost(eccentricity.take(path[:-1]), eccentricity.take(path[1:]), dv, origins.a,
+                      a_drift, targets.a, inc_drift, departure * SECONDS_PER_DAY,
+                      arrival * SECONDS_PER_DAY, j2=j2)  # fmt: skip
+    return PlanEvaluation(departure, duration, arrival, priced, float(ready), priced - dv)

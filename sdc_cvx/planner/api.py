@@ -29,7 +29,7 @@ from ..errors import IgnoredOptionWarning, MissionError, MissionInfeasible, Solv
 from ..inputs.catalog import Catalog
 from ..inputs.mission import MAX_TMAX_DAYS, Mission
 from ..milp.types import SolverOptions
-from ..network.edges import drift_radius_bounds, node_orbits
+from ..network.edges import drift_radius_bounds, node_eccentricities, node_orbits
 from ..solution import OPTIMAL_GAP_MPS, OPTIMAL_GAP_REL, IterationRecord, RunStatus, Solution
 from .certified import CertifiedNodes, CertifiedResult, certify
 from .fixed_path import PathSchedule, schedule_plan
@@ -91,14 +91,20 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
         warnings.warn(message, IgnoredOptionWarning, stacklevel=2)
     if catalog is not None and (problem := size_problem(len(catalog))) is not None:
         raise MissionError(problem)  # before anything is built
+    said = list(ignored)
+    catalog = Catalog.paper_case() if catalog is None else catalog
+    mission = (Mission() if mission is None else mission).for_catalog(catalog)
     if solver.method == "paper":
         from . import paper
 
-        solution = paper.solve(catalog, mission, solver=solver, settings=settings,
-                               progress=progress)  # fmt: skip
-        return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
-    catalog = Catalog.paper_case() if catalog is None else catalog
-    mission = Mission() if mission is None else mission
+        if mission.eccentricity == "on" and log is not None:  # the paper's circular legs
+            log("the paper's method plans the paper's circular legs: the eccentricity of "
+                "each leg is not priced (the certified search's is)")  # fmt: skip
+        solution = paper.solve(catalog, mission.replace(eccentricity="off"), solver=solver,
+                               settings=settings, progress=progress)  # fmt: skip
+        return dataclasses.replace(solution, notes=(*solution.notes, *said))
+    if log is not None:  # what the legs price, said once
+        log(eccentricity_note(mission, catalog))
     mission.check_candidates(catalog)
     wall = time.perf_counter()
     nodes = MissionNodes.of(catalog, mission)
@@ -128,7 +134,7 @@ def solve(catalog: Catalog | None = None, mission: Mission | None = None, *,
             "allow more time (--time-limit, solver.time_limit_s)"
         )
     solution = _solution(result, nodes, mission, solver, orbits, records, wall)
-    return dataclasses.replace(solution, notes=(*solution.notes, *ignored))
+    return dataclasses.replace(solution, notes=(*solution.notes, *said))
 
 
 def ignored_options(mission: Mission | None, solver: SolverOptions) -> list[str]:
@@ -187,14 +193,28 @@ def _infeasible_message(mission: Mission) -> str:
     )
 
 
+def eccentricity_note(mission: Mission, catalog: Catalog) -> str:
+    """What the plan's legs price, once: the eccentricity, or circular legs and why."""
+    if mission.eccentricity == "on":
+        return ("each leg prices the eccentricity it must change (the debris' mean "
+                "eccentricity vectors turned by J2; issue 46)")  # fmt: skip
+    if mission.transfer != "impulsive":
+        return "the low-thrust legs join circular orbits: their eccentricity is not priced"
+    why = ("it was turned off (eccentricity = \"off\")" if mission.eccentricity == "off"
+           and "argp_deg" in catalog.frame.columns
+           else "the catalog gives no argument of perigee")  # fmt: skip
+    return f"the legs join circular orbits, the paper's model: {why}"
+
+
 def certified_nodes(nodes: MissionNodes, mission: Mission) -> CertifiedNodes:
     """The mission as the certified search needs it (node positions into ``nodes``)."""
     return CertifiedNodes(
         legs=nodes.legs, ops_days=np.asarray(nodes.deorbit_days, dtype=float),
         cost_mps=np.asarray(nodes.cost_mps, dtype=float), first=nodes.first,
         must_visit=nodes.must_visit, excluded=nodes.excluded, tmax_days=mission.tmax_days,
-        tmin_days=mission.min_transfer_days, rule=mission.drift_inclination,
-        j2=mission.j2, model=mission.transfer_model())  # fmt: skip
+        tmin_days=mission.shortest_leg_days, rule=mission.drift_inclination,
+        j2=mission.j2, model=mission.transfer_model(),
+        eccentricity=node_eccentricities(nodes.catalog, mission))  # fmt: skip
 
 
 def _record(row: dict, ids, index: int) -> IterationRecord:
@@ -267,7 +287,9 @@ def solution_of(nodes: MissionNodes, mission: Mission, orbits, path, schedule: P
     path = [int(k) for k in path]
     plan, plan_notes = schedule_plan(orbits, path, schedule, deorbit_days=nodes.deorbit_days,
                                      tmax_days=mission.tmax_days, j2=mission.j2,
-                                     model=mission.transfer_model())  # fmt: skip
+                                     model=mission.transfer_model(),
+                                     eccentricity=node_eccentricities(nodes.catalog,
+                                                                      mission))  # fmt: skip
     ids = nodes.catalog.ids
     total = float(plan.dv_mps.sum() + nodes.cost_mps[path].sum())
     lower = float(min(lower_bound_mps, total))

@@ -456,7 +456,8 @@ def _no_schedule(L, lower, rounds, cells, start_clock):
 
 
 def schedule_plan(orbits, path, schedule: PathSchedule, *, deorbit_days, tmax_days: float,
-                  j2: float, model=None) -> tuple[PlanEvaluation, list[str]]:  # fmt: skip
+                  j2: float, model=None,
+                  eccentricity=None) -> tuple[PlanEvaluation, list[str]]:  # fmt: skip
     """A certified schedule flown in the true model (Eq. 10 arrivals), and notes.
 
     Parameters
@@ -471,6 +472,8 @@ def schedule_plan(orbits, path, schedule: PathSchedule, *, deorbit_days, tmax_da
     tmax_days, j2 : float
     model : TransferModel, optional
         The transfer model the schedule was found in (default impulsive).
+    eccentricity : Eccentricities, optional
+        The nodes' eccentricity vectors, where the legs price them.
 
     Returns
     -------
@@ -481,9 +484,13 @@ def schedule_plan(orbits, path, schedule: PathSchedule, *, deorbit_days, tmax_da
     """
     laps = schedule.laps if len(schedule.laps) else 0
     plan = evaluate_plan(orbits, list(path), schedule.a_drift, schedule.inc_drift,
-                         deorbit_days=deorbit_days, j2=j2, model=model, laps=laps)  # fmt: skip
+                         deorbit_days=deorbit_days, j2=j2, model=model, laps=laps,
+                         eccentricity=eccentricity)  # fmt: skip
     if abs(plan.end_day - schedule.end_day) < 1e-6 and plan.end_day <= tmax_days + 1e-6:
         return plan, []
+    part = plan.eccentricity_dv_mps  # at the schedule's dates: its cost, its priced part
+    part = None if part is None else part + (schedule.dv_mps - plan.dv_mps)
     plan = PlanEvaluation(schedule.departure_days, schedule.arrival_days - schedule.departure_days,
-                          schedule.arrival_days, schedule.dv_mps, schedule.end_day)  # fmt: skip
+                          schedule.arrival_days, schedule.dv_mps, schedule.end_day,
+                          part)  # fmt: skip
     return plan, ["legs reported with the schedule's dates (Eq. 10 rounding at a RAAN crossing)"]

@@ -123,6 +123,8 @@ def make_legs(ids, path, a_drift, inc_drift, side, plan: PlanEvaluation, *, orbi
             side=int(side[k]),
             dv_mps=float(plan.dv_mps[k]),
             phases=phases[k],
+            eccentricity_dv_mps=(None if plan.eccentricity_dv_mps is None
+                                 else float(plan.eccentricity_dv_mps[k])),
         )
         for k in range(len(path) - 1)
     )

@@ -156,7 +156,8 @@ def _schedule(orbits, nodes, path, a_low, a_high, deadline) -> PathSchedule | No
     """The path's best schedule in the true model (its own edges' cost tables only)."""
     origin, target = np.asarray(path[:-1]), np.asarray(path[1:])
     legs = LegCosts.build(orbits.take(origin), orbits.take(target), a_low, a_high,
-                          model=nodes.model)  # fmt: skip
+                          model=nodes.model,
+                          eccentricity=nodes.edge_eccentricity(origin, target))  # fmt: skip
     problem = PathProblem(legs, tuple(range(len(origin))),
                           tuple(float(nodes.ops_days[k]) for k in path), nodes.tmax_days,
                           nodes.tmin_days, nodes.rule, nodes.j2)  # fmt: skip

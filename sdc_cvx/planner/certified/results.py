@@ -28,6 +28,9 @@ class CertifiedNodes:
     j2 : float
     model : TransferModel
         The leg physics (:mod:`~sdc_cvx.physics.models`), impulsive by default.
+    eccentricity : Eccentricities or None
+        The nodes' mean eccentricity vectors where the legs price them
+        (:mod:`~sdc_cvx.physics.eccentricity`).
     """
 
     legs: int
@@ -41,6 +44,15 @@ class CertifiedNodes:
     rule: str
     j2: float
     model: object = field(default=IMPULSIVE)
+    eccentricity: object = None
+
+    def edge_eccentricity(self, origin, target) -> tuple | None:
+        """The ``(origin, target)`` eccentricity vectors of edges between node positions,
+        as :meth:`~sdc_cvx.physics.leg_bounds.LegCosts.build` takes them (None: circular
+        legs)."""
+        if self.eccentricity is None:
+            return None
+        return tuple(self.eccentricity.take(np.asarray(k)) for k in (origin, target))
 
     def least_cost(self) -> float:
         """A bound no plan is below [m/s], known before any search: its L + 1 node costs

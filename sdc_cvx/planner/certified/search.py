@@ -110,9 +110,10 @@ class _Search:
         say(f"certified search: {n} debris, {len(self.edge_from)} edges, {nodes.legs} legs; "
             "cost tables of every edge")  # fmt: skip
         self.find_greedy = lambda: find_greedy(self, orbits, a_low, a_high)
-        self.legs = LegCosts.build(orbits.take(self.edge_from), orbits.take(self.edge_to),
-                                   a_low, a_high, model=nodes.model,
-                                   on_chunk=cost_table_clock(self))  # fmt: skip
+        ends = self.edge_from, self.edge_to
+        self.legs = LegCosts.build(*(orbits.take(k) for k in ends), a_low, a_high,
+                                   model=nodes.model, on_chunk=cost_table_clock(self),
+                                   eccentricity=nodes.edge_eccentricity(*ends))  # fmt: skip
         self.edge_floor = self.legs.floor(np.arange(len(self.edge_from)))
         # the first network holds every edge: fewer cells when they are many (481 TLE
         # fragments: 230 880 edges, 2 cells each instead of 8 keeps it near 1.4 M arcs)

@@ -161,7 +161,7 @@ class _Driver(IncumbentSteps, TrustSteps, TrueModelSteps, LogSteps):
         self.model = PathModel(
             len(catalog), self.kept["i"].to_numpy(), self.kept["j"].to_numpy(),
             n=nodes.legs + 1, tmax_days=mission.tmax_days, deorbit_days=nodes.deorbit_days,
-            min_transfer_days=mission.min_transfer_days, operations_dv_mps=nodes.cost_mps,
+            min_transfer_days=mission.shortest_leg_days, operations_dv_mps=nodes.cost_mps,
             first=nodes.first, must_visit=nodes.must_visit,
             duration_model=settings.duration_model,
         )  # fmt: skip

@@ -179,7 +179,7 @@ class IncumbentSteps:
     def fits(self, evaluation: PlanEvaluation) -> bool:
         """The plan ends by T_max and no transfer is shorter than T_min (true model)."""
         return evaluation.end_day <= self.mission.tmax_days + 1e-6 and bool(
-            np.all(evaluation.duration_days >= self.mission.min_transfer_days - 1e-6)
+            np.all(evaluation.duration_days >= self.mission.shortest_leg_days - 1e-6)
         )
 
     def total(self, path, evaluation) -> float:

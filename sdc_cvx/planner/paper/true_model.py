@@ -59,7 +59,7 @@ class TrueModelSteps:
             tmax_days=self.mission.tmax_days, deorbit_days=self.nodes.deorbit_days,
             a_low=g.a_low, a_high=g.a_high, j2=self.mission.j2,
             inclination=self.mission.drift_inclination,
-            min_days=self.mission.min_transfer_days, model=g.model, **options,
+            min_days=self.mission.shortest_leg_days, model=g.model, **options,
         )  # fmt: skip
 
     def adopt(self, legs, final):
@@ -104,7 +104,7 @@ class TrueModelSteps:
                                     g.a_low, g.a_high, model=g.model)  # fmt: skip
         problem = PathProblem(legs_table, tuple(range(len(path) - 1)),
                               tuple(float(ops[k]) for k in path), mission.tmax_days,
-                              mission.min_transfer_days, mission.drift_inclination,
+                              mission.shortest_leg_days, mission.drift_inclination,
                               mission.j2)  # fmt: skip
         local = float(final.evaluation.dv_mps.sum())
         # no finer than the model's box bounds resolve a path (low thrust: a few mm/s a leg)
