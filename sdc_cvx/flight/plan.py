@@ -24,6 +24,11 @@ from .ephemeris import missing_phase
 from .solution_file import SolutionFileError, checked_solution
 
 
+def miss_text(km: float) -> str:
+    """A rendezvous' distance for people: metres below a kilometre, else km."""
+    return f"{km * 1e3:.2f} m" if km < 1.0 else f"{km:.2f} km"
+
+
 class FlightError(InputError):
     """A plan that cannot be flown as asked: what is missing or wrong, and what to do."""
 

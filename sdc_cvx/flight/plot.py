@@ -10,6 +10,7 @@ from matplotlib.figure import Figure
 
 from ..physics.orbits import SECONDS_PER_DAY
 from ..report.atomic import write_figure
+from .plan import miss_text
 
 if TYPE_CHECKING:
     from .result import Flight
@@ -59,16 +60,21 @@ def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
     meetings = flight.rendezvous
     legs = np.arange(1, len(meetings) + 1)
     width = 0.38
-    top.bar(legs - width / 2, [m.phasing_dv_mps for m in meetings], width, label="phasing ΔV",
+    guided = flight.plan.accel_mps2 is None  # an impulsive flight's legs are guided
+    top.bar(legs - width / 2, [m.phasing_dv_mps for m in meetings], width,
+            label="guided leg less the plan's" if guided else "phasing ΔV",
             color="#6baed6")  # fmt: skip
     top.bar(legs + width / 2, [m.correction_dv_mps for m in meetings], width,
-            label="correction ΔV", color="#fd8d3c")  # fmt: skip
+            label="closed loop (trims, approach)" if guided else "correction ΔV",
+            color="#fd8d3c")  # fmt: skip
     top.axhline(0.0, color="#444444", lw=0.8)
     top.set_ylabel("ΔV [m/s]")
     top.set_xticks(legs, [f"leg {k}\n→ {m.target}" for k, m in zip(legs, meetings, strict=True)])
     misses = top.twinx()
-    misses.plot(legs, [m.miss_km for m in meetings], "ko", label="miss [km]")
-    misses.set_ylabel("position miss after the corrections [km]")
+    metres = max((m.miss_km for m in meetings), default=0.0) < 1.0  # guided: metres at most
+    scale, unit = (1e3, "m") if metres else (1.0, "km")
+    misses.plot(legs, [m.miss_km * scale for m in meetings], "ko", label=f"miss [{unit}]")
+    misses.set_ylabel(f"position miss at the rendezvous [{unit}]")
     found = [m.miss_km for m in meetings if m.miss_km > 0]
     if found and max(found) > 100.0 * min(found):  # a missed debris beside km-size misses
         misses.set_yscale("log")
@@ -82,7 +88,7 @@ def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
                   f"plan's {flight.planned_dv_flown_mps:.2f} m/s"
                   + ("" if flight.complete else f" ({len(meetings)} of "
                      f"{len(flight.plan.legs)} legs flown)")
-                  + f"; worst miss {flight.worst_miss_km:.2f} km", fontsize=11,
+                  + f"; worst miss {miss_text(flight.worst_miss_km)}", fontsize=11,
                   color="#222222" if status == "flown" else "#b2182b")  # fmt: skip
     days, altitude = flight.altitude_profile()
     bottom.plot(days, altitude, lw=0.3, color="#c6dbef", label="propagated (osculating)")

@@ -41,7 +41,7 @@ from ..physics.orbits import SECONDS_PER_DAY
 from ..report.atomic import write_atomic
 from ..report.out_folder import FLIGHT_FILES, FLIGHT_FOLDER, is_ours
 from .oem import write_oem
-from .plan import FlightError, FlightPlan
+from .plan import FlightError, FlightPlan, miss_text
 from .propagation import ForceModel
 
 MANEUVER_COLUMNS = ("epoch_utc", "leg", "kind", "dv_mps", "dv_r_mps", "dv_t_mps", "dv_n_mps",
@@ -220,7 +220,7 @@ class Flight:
             ends = f"the last debris met on day {self.end_day:.2f}"
             planned += (f" ({base:.2f} m/s over the {len(self.rendezvous)} of "
                         f"{len(self.plan.legs)} legs flown)")  # fmt: skip
-        met = (f"worst miss {self.worst_miss_km:.2f} km; {ends}" if self.rendezvous
+        met = (f"worst miss {miss_text(self.worst_miss_km)}; {ends}" if self.rendezvous
                else "no debris met")  # fmt: skip
         line = (f"flight    {planned}, flown {self.flown_dv_mps:.2f} m/s "
                 f"({extra:+.2f} %), {met}, {limit} ({self.force.describe()['name']}, "
