@@ -14,6 +14,7 @@ from __future__ import annotations
 import contextlib
 import fcntl
 import os
+import tempfile
 from pathlib import Path
 
 import click
@@ -62,6 +63,9 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
             for sub, _ in plans:  # before any flight: a folder of the user's is never replaced
                 if (problem := flight_folder_problem(sub)) is not None:
                     fail(problem)
+                if (problem := _unwritable(sub)) is not None:  # before the flight, not after
+                    fail(f"cannot write {sub}/flight: {problem} (nothing was flown)",
+                         SOLVER_FAILED)  # fmt: skip
             for sub, plan in plans:
                 if plan.over_capacity is not None:  # never called flyable (as run --fly)
                     click.echo(f"not flown: {sub}: {plan.over_capacity}", err=True)
@@ -70,7 +74,11 @@ def fly_folder(folder: Path, force_model: str = "j2", *, quiet: bool = False,
                 progress(f"flying {sub}: {' -> '.join(plan.catalog.frame['id'])}")
                 for note in plan.notes:  # a catalog changed since the run
                     click.echo(f"warning: {note}", err=True)
+                before = _plan_stamp(sub)
                 flight = fly(plan, force=force_model, progress=progress)
+                if _plan_stamp(sub) != before:  # another plan swapped in meanwhile
+                    fail(f"{sub}/solution.json changed while its plan was flown (a run into "
+                         "the folder?): the flight is not written (fly it again)")  # fmt: skip
                 flight.save(sub)
                 flights.append(flight)
                 click.echo(flight.summary(), err=not stdout)
@@ -112,6 +120,26 @@ def warn_replaced_flights(out_dir) -> None:
                    f"{listing(f'{name}/' for name in flights)} (flights of its earlier "
                    f"plan); python -m sdc_cvx fly {out_dir} flies the new one",
                    err=True)  # fmt: skip
+
+
+def _unwritable(folder: Path) -> str | None:
+    """Why nothing can be written in ``folder`` (a file tried there), or None."""
+    try:
+        with tempfile.TemporaryFile(dir=folder):
+            return None
+    except OSError as err:
+        return err.strerror or str(err)
+
+
+def _plan_stamp(folder: Path) -> tuple | None:
+    """What identifies the plan in ``folder``: its ``solution.json``'s inode, size, time
+    and bytes (None when there is none)."""
+    path = folder / "solution.json"
+    try:
+        status = path.stat()
+        return (status.st_ino, status.st_size, status.st_mtime_ns, path.read_bytes())
+    except OSError:
+        return None
 
 
 @contextlib.contextmanager

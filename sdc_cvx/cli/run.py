@@ -147,7 +147,7 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
     from ..planner.api import ignored_options, solve
     from ..planner.size_guard import size_problem
     from ..report.out_folder import new_folder_problem, out_folder_problem
-    from ..report.run_folder import new_run_folder, write_run
+    from ..report.run_folder import being_flown, new_run_folder, write_run
     from ..solution import RunStatus
 
     # a plan, but the run did not settle: say so (a new solved status needs no warning)
@@ -183,6 +183,9 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
                    f"{scenario_file}` plans the campaign", err=True)  # fmt: skip
     if out_dir is not None:  # before the solve: a bad --out must not cost a solve
         problem = out_folder_problem(Path(out_dir))
+        if problem is None and being_flown(out_dir):
+            problem = (f"{out_dir} is being flown now (python -m sdc_cvx fly): wait for it to "
+                       "end, or write to another folder")  # fmt: skip
         if problem is not None:
             fail(f"--out: {problem}")
         warn_replaced_flights(out_dir)

@@ -308,14 +308,38 @@ def run_folder_plans(folder, catalog_path=None) -> list[tuple[Path, FlightPlan]]
     if not campaign.exists():
         return [(folder, FlightPlan.from_run_folder(folder, catalog_path=catalog_path))]
     data = _read_json(campaign)
+    if not isinstance(data, dict):
+        raise FlightError(f"{campaign}: expected a JSON object (a campaign's campaign.json), "
+                          f"got {type(data).__name__}")  # fmt: skip
     missions = data.get("missions")
     if not isinstance(missions, list) or not missions:
-        raise FlightError(f"{campaign}: no missions to fly")
-    subs = [folder / str(entry.get("folder", "")) for entry in missions]
+        raise FlightError(f"{campaign}: no missions to fly (field 'missions': expected a "
+                          "non-empty list)")  # fmt: skip
+    subs = [_mission_folder(folder, campaign, k, entry) for k, entry in enumerate(missions)]
     return [(sub, FlightPlan.from_run_folder(sub, scenario_file=folder / "scenario.toml",
                                              campaign_start=data.get("start_utc"),
                                              catalog_path=catalog_path))
             for sub in subs]  # fmt: skip
+
+
+def _mission_folder(folder: Path, campaign: Path, k: int, entry) -> Path:
+    """Mission ``k``'s folder as ``campaign.json`` names it: a sub-folder of the campaign
+    folder (a name of its own, never a path out of it), or FlightError naming the field."""
+    where = f"{campaign}, missions[{k}]"
+    if not isinstance(entry, dict):
+        raise FlightError(f"{where}: expected an object with a 'folder', got "
+                          f"{type(entry).__name__}")  # fmt: skip
+    name = entry.get("folder")
+    if not isinstance(name, str) or not name:
+        raise FlightError(f"{where}, field 'folder': expected the name of a mission folder, "
+                          f"got {name!r}")  # fmt: skip
+    sub = folder / name
+    inside = Path(name).name == name and name not in (".", "..") and not Path(name).is_absolute()
+    if not inside or sub.resolve().parent != folder.resolve():
+        raise FlightError(f"{where}, field 'folder': {name!r} is not a sub-folder of the "
+                          f"campaign folder {folder} (a flight is written only inside "
+                          "it)")  # fmt: skip
+    return sub
 
 
 def _transfer_problem(transfer: str) -> str | None:

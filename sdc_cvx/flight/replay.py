@@ -72,8 +72,9 @@ leg followed by less stay at its debris aims to arrive that much earlier."""
 HOPELESS_DAYS = 30.0
 """A leg that cannot arrive within this many days after T_max is not flown."""
 MIN_STAY_S = 60.0
-"""A leg leaves at least this long [s] after the last arrival: the state at a rendezvous
-epoch is the rendezvous', not the next departure's."""
+"""A leg leaves at least this long [s] after the last arrival (the state at a rendezvous
+epoch is the rendezvous', not the next departure's) or the flight's start (the
+trajectory's first state is the debris', before any impulse)."""
 MIN_FLIGHT_DAYS = 10.0
 """Flight time [days] a leg of the plan shorter than this gets (a zero-length leg's
 rendezvous needs weeks to phase cheaply; measured in ``benchmarks/flight.py``)."""
@@ -124,8 +125,8 @@ def fly(plan: FlightPlan, *, force: str = "j2", rates: str = "fitted", ephemeris
                      "(it closes by co-orbiting, which GTOC9's ephemeris allows no J2 orbit)")
     for k, leg in enumerate(plan.legs):
         t_ready = max(leg.departure_day * SECONDS_PER_DAY + delay, track.t)
-        if plan.accel_mps2 is None:  # never the last arrival's epoch (its state is the check)
-            t_ready = max(t_ready, track.t + (MIN_STAY_S if k else 0.0))
+        if plan.accel_mps2 is None:  # never at an arrival's epoch (its state is the check),
+            t_ready = max(t_ready, track.t + MIN_STAY_S)  # nor at the trajectory's first
         pole = _pole(plan, ephemeris, t_ready + 0.5 * leg.duration_days * SECONDS_PER_DAY)
         if plan.accel_mps2 is None:
             track.coast(t_ready, model, pole)  # the stay: proximity operations not modelled

@@ -18,6 +18,9 @@ from ..physics.orbits import R_EARTH
 
 CHAIN_TOL_DAYS = 1e-6
 """How far a leg may leave before the previous one arrives (rounding) [days]."""
+MAX_DAYS = 3652.5
+"""The latest a leg may leave or last [days]: the longest mission planned (10 years,
+``inputs.mission.MAX_TMAX_DAYS``, not imported: a flight needs no mission module here)."""
 
 
 class SolutionFileError(InputError):
@@ -46,16 +49,17 @@ def checked_solution(data, path: Path) -> dict:
     mission, legs = data.get("mission"), data.get("legs")
     if not isinstance(legs, list) or not isinstance(mission, dict):
         fail("the file", "not a solution of this version (no 'legs' list or 'mission' object)")
-    tmax = _number(mission.get("tmax_days"), lambda v: v > 0)
+    tmax = _number(mission.get("tmax_days"), lambda v: 0 < v <= MAX_DAYS)
     if tmax is None:
-        fail("mission.tmax_days", f"expected a number > 0, got {mission.get('tmax_days')!r}")
+        fail("mission.tmax_days", f"expected a number in (0, {MAX_DAYS:g}], got "
+                                  f"{mission.get('tmax_days')!r}")  # fmt: skip
     band = mission.get("drift_altitude_km")
     if not (isinstance(band, list | tuple) and len(band) == 2
             and all(_number(v, lambda v: v > 0) is not None for v in band)):  # fmt: skip
         fail("mission.drift_altitude_km", f"expected [low, high] in km, got {band!r}")
-    total = _number(data.get("total_duration_days"), lambda v: v >= 0)
+    total = _number(data.get("total_duration_days"), lambda v: 0 <= v <= 2 * MAX_DAYS)
     if total is None:
-        fail("total_duration_days", f"expected a number >= 0, got "
+        fail("total_duration_days", f"expected a number in [0, {2 * MAX_DAYS:g}], got "
                                     f"{data.get('total_duration_days')!r}")  # fmt: skip
     start = None
     if data.get("start"):
@@ -74,8 +78,8 @@ def checked_solution(data, path: Path) -> dict:
                 fail(f"{where}.{name}", f"expected a debris id, got {leg.get(name)!r}")
             fields[name] = str(leg[name])
         for name, rule, said in (
-                ("departure_day", lambda v: v >= 0, ">= 0 [days]"),
-                ("duration_days", lambda v: v >= 0, ">= 0 [days]"),
+                ("departure_day", lambda v: 0 <= v <= MAX_DAYS, f"in [0, {MAX_DAYS:g}] [days]"),
+                ("duration_days", lambda v: 0 <= v <= MAX_DAYS, f"in [0, {MAX_DAYS:g}] [days]"),
                 ("drift_a_km", lambda v: v > R_EARTH / 1e3, f"> {R_EARTH / 1e3:g} [km]"),
                 ("drift_inc_deg", lambda v: 0 <= v <= 180, "in [0, 180] [deg]"),
                 ("dv_mps", lambda v: v >= 0, ">= 0 [m/s]")):  # fmt: skip

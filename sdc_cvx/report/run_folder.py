@@ -320,8 +320,45 @@ def _exchange(a: Path, b: Path) -> bool:
     return result == 0
 
 
+def being_flown(folder: Path | str) -> bool:
+    """Whether ``sdc_cvx fly`` is flying ``folder`` now (it holds a ``flock`` on it)."""
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return False
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return True
+    finally:
+        os.close(fd)
+    return False
+
+
+@contextlib.contextmanager
+def _while_not_flown(folder: Path):
+    """The ``flock`` ``fly`` takes on a folder, held while it is replaced: a run waits for
+    a flight of the folder to end, and no flight starts meanwhile (issue 48: one plan's
+    ``solution.json`` beside another plan's ``flight/``)."""
+    if not folder.is_dir():
+        yield
+        return
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
+
+
 def _swap_in(stage: Path, folder: Path) -> None:
-    """Put ``stage`` in ``folder``'s place at once; the old content is removed."""
+    """Put ``stage`` in ``folder``'s place at once (once no flight of it is under way);
+    the old content is removed."""
+    with _while_not_flown(folder):
+        _swap(stage, folder)
+
+
+def _swap(stage: Path, folder: Path) -> None:
     if not folder.exists():
         os.rename(stage, folder)
         return
