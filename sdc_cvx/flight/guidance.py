@@ -151,14 +151,10 @@ class LegGuidance:
         plan = _merged(plan)
         kind = "depart"
         while True:
-            t_end = plan.epochs[-1]
-            t_approach = t_end - APPROACH_ORBITS * self._period()
-            before = plan.epochs[:-1][plan.epochs[:-1] <= t_approach]
-            if not len(before):
-                self._coast_trimmed(max(t_approach, self.track.t), plan)
+            plan, approach = self._coast_trimmed(plan)
+            if approach:
                 self._approach(plan, kind)
                 return self.maneuvers
-            plan = self._coast_trimmed(before[0], plan)
             plan = self._impulse(plan, kind)
             kind = "burn"
 
@@ -166,11 +162,21 @@ class LegGuidance:
         a = 1.0 / (2.0 / np.linalg.norm(self.track.r) - self.track.v @ self.track.v / self.force.mu)
         return float(TWO_PI * np.sqrt(a**3 / self.force.mu))
 
-    def _coast_trimmed(self, t_stop: float, plan: LegPlan) -> LegPlan:
-        """Coast to ``t_stop`` [s], trimmed on the way when the coast is long; the plan as
-        last re-planned."""
-        t_stop = _round_us(t_stop)
+    def _next_stop(self, plan: LegPlan) -> tuple[float, bool]:
+        """The epoch [s] of the plan's next impulse, or of the approach (then True) when
+        no impulse comes before it."""
+        t_approach = plan.epochs[-1] - APPROACH_ORBITS * self._period()
+        before = plan.epochs[:-1][plan.epochs[:-1] <= t_approach]
+        if len(before):
+            return _round_us(max(before[0], self.track.t)), False
+        return _round_us(max(t_approach, self.track.t)), True
+
+    def _coast_trimmed(self, plan: LegPlan) -> tuple[LegPlan, bool]:
+        """Coast to the plan's next stop (:meth:`_next_stop`), trimmed on the way when the
+        coast is long; the plan as last re-planned and whether the stop is the approach.
+        Each trim's re-plan may move the next impulse: the stop follows it."""
         start = self.track.t
+        t_stop, _ = self._next_stop(plan)
         if t_stop - start > TRIM_MIN_DAYS * SECONDS_PER_DAY:
             for fraction in TRIM_FRACTIONS:
                 t_trim = _round_us(t_stop - fraction * (t_stop - start))
@@ -178,8 +184,10 @@ class LegGuidance:
                     continue
                 self._coast(t_trim)
                 plan = self._correct(plan, "trim", new=True)
+                t_stop, _ = self._next_stop(plan)
+        t_stop, approach = self._next_stop(plan)
         self._coast(t_stop)
-        return plan
+        return plan, approach
 
     def _coast(self, t: float) -> None:
         self.track.coast(t, self.force, self.pole)
