@@ -163,7 +163,9 @@ class Catalog:
             (:func:`csv_delimiter`); numbers take a decimal point.
         start : str or datetime-like, optional
             Mission start date (UTC when naive), within :data:`MAX_PROPAGATION_DAYS` of
-            the epochs.  Default: the latest epoch, or None without epochs.
+            the epochs.  Default: the latest epoch within :data:`MAX_PROPAGATION_DAYS` of
+            the median epoch (a wrong epoch far from the others is named in a
+            :class:`~sdc_cvx.errors.CatalogWarning`, not taken), or None without epochs.
         on_invalid : {"raise", "set aside"}
             Rows that are not orbits of this model (README, "Physical domain"): a
             problem (default), or set aside in ``Catalog.invalid``.

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..errors import CatalogError, CatalogWarning
+from ..errors import CatalogError, CatalogWarning, listing
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
 from .catalog_text import (
     DERIVED_COLUMNS,
@@ -82,7 +82,8 @@ def validate(
     frame : pandas.DataFrame
         The catalog's rows (``Catalog.frame``), RAANs at the start date.
     start : pandas.Timestamp or None
-        The start date: ``start`` as given, else the latest epoch, else None.
+        The start date: ``start`` as given, else the latest epoch of the bulk
+        (:func:`_bulk_start`), else None.
     invalid : pandas.DataFrame or None
         The rows set aside (``Catalog.invalid``), or None.
 
@@ -104,7 +105,7 @@ def validate(
         usable = [e for pos, e in enumerate(columns.epochs)
                   if pos not in domain and e is not None]  # fmt: skip
         if start_ts is None and usable:
-            start_ts = max(usable)
+            start_ts = _bulk_start(columns.epochs, domain, source, where)
         _check_epochs(columns.epochs, start_ts, start is not None, source, domain, problems)
     aside = on_invalid == "set aside"
     if not aside:
@@ -219,6 +220,38 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
 def _no_check(value: float) -> None:
     """The check of a value a reader already found is not an orbit of this model."""
     return None
+
+
+def _bulk_start(epochs, domain, source: str, where: Callable[[int], str]) -> pd.Timestamp:
+    """The default start: the latest epoch of the largest 10-year window of epochs.
+
+    Each epoch counts the epochs within :data:`MAX_PROPAGATION_DAYS` before it (itself
+    included); the start is the latest epoch of those counting the most (rows in
+    ``domain`` and without an epoch left out).  In a catalogue the epochs lie days to
+    months apart: the latest epoch counts them all and is the start, the freshest element
+    set.  One wrong epoch (a 2-digit TLE year read in the wrong century: 2056 among sets of
+    2020) counts only itself: it is not the start, which would leave every good set more
+    than 10 years from it; the epochs later than the start by more than 10 years are named
+    in a :class:`CatalogWarning` (and then by :func:`_check_epochs`, as too far from it).
+    """
+    positions = [pos for pos, e in enumerate(epochs) if pos not in domain and e is not None]
+    stamps = pd.DatetimeIndex([epochs[pos] for pos in positions]).as_unit("ns")
+    ns = np.sort(stamps.asi8)
+    window = int(MAX_PROPAGATION_DAYS * SECONDS_PER_DAY * 1e9)
+    counts = np.arange(len(ns)) - np.searchsorted(ns, ns - window, side="left") + 1
+    start = pd.Timestamp(int(ns[np.flatnonzero(counts == counts.max())[-1]]), tz="UTC")
+    later = [k for k in range(len(stamps)) if stamps[k].value - start.value > window]
+    if later:
+        named = listing(f"{where(positions[k])}: {stamps[k].isoformat()} "
+                        f"({(stamps[k] - start).days / 365.25:.1f} years later)"
+                        for k in later)  # fmt: skip
+        warnings.warn(
+            f"{source}: the start is {start.isoformat()}, the latest epoch of the most "
+            f"epochs within {MAX_PROPAGATION_DAYS:g} days (10 years) of each other "
+            f"({counts.max()} of {len(ns)}); {len(later)} epoch(s) more than 10 years later "
+            f"are not taken as the start (a wrong year?): {named}", CatalogWarning,
+            stacklevel=5)  # fmt: skip
+    return start
 
 
 def _check_epochs(epochs, start, given: bool, source, domain, problems) -> None:

@@ -1,0 +1,61 @@
+"""Inputs no longer taken at face value (issue 48, items 5-10), through real processes
+and the API.
+
+- 5: one element set with a wrong epoch (2056 among sets of 2020) is not the default start:
+  the start is taken from the bulk and the outlier is named.
+"""
+
+import warnings
+
+import pandas as pd
+
+from sdc_cvx.errors import CatalogWarning
+from sdc_cvx.inputs.formats import read_catalog
+from tests.test_cli import cli_process
+
+# five SSO rocket bodies of 2020 (sso_rb.tle); the second's epoch year typed 56 for 20
+OUTLIER_TLE = """\
+0 THOR AGENA D R/B
+1   733U 64002A   20145.30230088 +.00000007 +00000-0 +20152-4 0  9992
+2   733 099.0143 035.9085 0032950 303.3378 056.4651 14.32394256935785
+0 THOR AGENA D R/B
+1   815U 64031C   56147.19804992 -.00000013  00000-0  17013-4 0  9994
+2   815  99.8646 150.6351 0012488  52.4516 307.7793 14.27329406905632
+0 DELTA 1 R/B
+1  1433U 65051B   20146.31086254 +.00000082 +00000-0 +29247-4 0  9998
+2  1433 098.4231 232.8240 0041657 274.5531 085.0909 14.56747764872077
+0 DELTA 1 R/B
+1  1983U 66008B   20145.90470930 +.00000083 +00000-0 +25604-4 0  9997
+2  1983 097.9274 093.5364 0070785 241.8374 117.5665 14.61706703869523
+0 THOR BURNER 2 R/B
+1  2741U 67010B   20146.62751708 +.00000004 +00000-0 +20605-4 0  9998
+2  2741 099.0131 016.4909 0052730 226.6315 133.0467 14.27945097769273
+"""
+# day 146.62751708 of 2020, the latest of the four good epochs
+LATEST_GOOD = pd.Timestamp("2020-01-01T00:00:00Z") + pd.Timedelta(days=145.62751708)
+
+
+# ---------------------------------------------------------------------- item 5
+def test_a_wrong_epoch_is_not_the_default_start_and_is_named(tmp_path):
+    path = tmp_path / "outlier.tle"
+    path.write_text(OUTLIER_TLE)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        catalog = read_catalog(path, on_invalid="set aside")
+    assert abs(catalog.start - LATEST_GOOD) < pd.Timedelta(seconds=1)
+    assert sorted(catalog.ids) == ["1433", "1983", "2741", "733"]
+    assert list(catalog.invalid["id"]) == ["815"]
+    said = [str(w.message) for w in caught if issubclass(w.category, CatalogWarning)]
+    assert any("catalog number 815" in text and "2056" in text for text in said), said
+
+
+def test_the_catalog_command_keeps_the_four_good_sets(tmp_path):
+    path = tmp_path / "outlier.tle"
+    path.write_text(OUTLIER_TLE)
+    done = cli_process("catalog", str(path))
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+    assert "4 debris from" in done.stderr and "RAANs at 2020-05-25" in done.stderr
+    assert "catalog number 815" in done.stderr and "2056-05-26" in done.stderr
+    for good in ("733", "1433", "1983", "2741"):
+        assert f"catalog number {good})" not in done.stderr, done.stderr
