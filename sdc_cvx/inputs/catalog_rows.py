@@ -99,7 +99,7 @@ def validate(
     domain: dict[int, str] = dict(flagged or {})
     columns = _check_rows(raw, source, where, problems, broken or {}, domain)
     if not problems:
-        _warn_units(columns.numbers, source)
+        _check_units(columns.numbers, source, problems)
     start_ts = parse_start(start, source, problems)
     if columns.epochs is not None:  # also with other problems: one error says all
         usable = [e for pos, e in enumerate(columns.epochs)
@@ -127,21 +127,29 @@ def validate(
 
 
 # ---------------------------------------------------------------------- checking
-def _warn_units(numbers: dict, source: str) -> None:
-    """A :class:`CatalogWarning` where the values look like other units than the
-    columns': every angle of three rows or more within [0, 2 pi] (radians), or a median
-    semi-major axis above 100,000 km (metres)."""
+def _check_units(numbers: dict, source: str, problems: list[str]) -> None:
+    """Values that look like other units than the columns'.
+
+    Radians are refused (a problem): three rows or more, every inclination within
+    [0, pi] and not all 0, every |RAAN| within 2 pi.  In degrees these are orbits within
+    3.1 deg of the equator whose nodes all lie within 6.3 deg of each other, which no
+    catalogue of debris holds; in radians they are any orbits (an SSO's 98 deg is 1.71 rad),
+    and planned as degrees they were 1.7 deg orbits (issue 48: "optimal", 23.6 m/s for
+    0.03 deg of plane change).  Equatorial rows (every inclination 0) are the same in both
+    units.  A median semi-major axis above 100,000 km (metres?) draws a
+    :class:`CatalogWarning`: each such row is refused or set aside by the domain check.
+    """
     inc, raan, a_km = (np.asarray(numbers.get(k, []), dtype=float)
                        for k in ("inc_deg", "raan_deg", "a_km"))  # fmt: skip
-    said = []
-    if len(inc) >= 3 and np.nanmax(inc) <= np.pi and np.nanmax(raan) <= 2.0 * np.pi:
-        said.append(f"inc_deg and raan_deg: every value is at most {2.0 * np.pi:.3f}: "
-                    "radians? (degrees are expected)")  # fmt: skip
+    if (len(inc) >= 3 and np.nanmax(inc) <= np.pi and np.nanmax(inc) > 0
+            and np.nanmax(np.abs(raan)) <= 2.0 * np.pi):  # fmt: skip
+        problems.append(
+            f"{source}, columns 'inc_deg' and 'raan_deg': every inclination is at most "
+            f"{np.nanmax(inc):.4g} and every RAAN within {2.0 * np.pi:.4f} of 0 in all "
+            f"{len(inc)} rows: radians? (degrees are expected: multiply by 180/pi = 57.2958)")
     if len(a_km) and np.nanmedian(a_km) > 1e5:
-        said.append(f"a_km: a median of {np.nanmedian(a_km):.6g}: metres? (kilometres are "
-                    "expected)")  # fmt: skip
-    for text in said:
-        warnings.warn(f"{source}: {text}", CatalogWarning, stacklevel=5)
+        warnings.warn(f"{source}: a_km: a median of {np.nanmedian(a_km):.6g}: metres? "
+                      "(kilometres are expected)", CatalogWarning, stacklevel=5)  # fmt: skip
 
 
 @dataclass

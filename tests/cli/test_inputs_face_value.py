@@ -3,13 +3,16 @@ and the API.
 
 - 5: one element set with a wrong epoch (2056 among sets of 2020) is not the default start:
   the start is taken from the bulk and the outlier is named.
+- 6: a CSV whose angles are radians is refused, naming the file and the columns.
 """
 
 import warnings
 
 import pandas as pd
+import pytest
 
-from sdc_cvx.errors import CatalogWarning
+from sdc_cvx.errors import CatalogError, CatalogWarning
+from sdc_cvx.inputs.catalog import Catalog
 from sdc_cvx.inputs.formats import read_catalog
 from tests.test_cli import cli_process
 
@@ -59,3 +62,36 @@ def test_the_catalog_command_keeps_the_four_good_sets(tmp_path):
     assert "catalog number 815" in done.stderr and "2056-05-26" in done.stderr
     for good in ("733", "1433", "1983", "2741"):
         assert f"catalog number {good})" not in done.stderr, done.stderr
+
+
+# ---------------------------------------------------------------------- item 6
+RADIANS = "id,a_km,e,inc_deg,raan_deg\n1,7078,0.001,1.71,0.5\n2,7178,0.001,1.72,2.1\n" \
+          "3,7128,0.001,1.70,4.0\n4,7100,0.001,1.71,5.9\n"  # fmt: skip
+"""Sun-synchronous orbits (98 deg = 1.71 rad) with their angles in radians."""
+
+
+@pytest.mark.parametrize("on_invalid", ["raise", "set aside"])
+def test_angles_in_radians_are_refused_naming_the_file_and_columns(tmp_path, on_invalid):
+    """Not equatorial rows (inclination 0 either way), nor two rows only: read as given."""
+    path = tmp_path / "degrees.csv"
+    path.write_text("id,a_km,e,inc_deg,raan_deg\n1,7078,0,0,0.5\n2,7178,0,0,2.1\n"
+                    "3,7128,0,0,4.0\n")  # fmt: skip
+    assert len(Catalog.from_csv(path, on_invalid=on_invalid)) == 3
+    path.write_text("id,a_km,e,inc_deg,raan_deg\n1,7078,0,1.5,0.5\n2,7178,0,1.7,2.1\n")
+    assert len(Catalog.from_csv(path, on_invalid=on_invalid)) == 2
+    path = tmp_path / "radians.csv"
+    path.write_text(RADIANS)
+    with pytest.raises(CatalogError, match=r"radians\.csv, columns 'inc_deg' and 'raan_deg'"):
+        Catalog.from_csv(path, on_invalid=on_invalid)
+
+
+def test_run_on_angles_in_radians_exits_2(tmp_path):
+    path = tmp_path / "radians.csv"
+    path.write_text(RADIANS)
+    done = cli_process("run", "--catalog", str(path), "--n", "2", "--quiet",
+                       "--out", str(tmp_path / "out"))  # fmt: skip
+    assert done.returncode == 2, done.stderr
+    assert "Traceback" not in done.stderr and not (tmp_path / "out").exists()
+    assert "radians.csv, columns 'inc_deg' and 'raan_deg'" in done.stderr
+    assert "radians? (degrees are expected" in done.stderr
+
