@@ -4,6 +4,7 @@ and the API.
 - 5: one element set with a wrong epoch (2056 among sets of 2020) is not the default start:
   the start is taken from the bulk and the outlier is named.
 - 6: a CSV whose angles are radians is refused, naming the file and the columns.
+- 7: an injection orbit's a_km in metres exits 2 naming the scenario key.
 """
 
 import warnings
@@ -14,6 +15,7 @@ import pytest
 from sdc_cvx.errors import CatalogError, CatalogWarning
 from sdc_cvx.inputs.catalog import Catalog
 from sdc_cvx.inputs.formats import read_catalog
+from sdc_cvx.inputs.mission import Mission, MissionError
 from tests.test_cli import cli_process
 
 # five SSO rocket bodies of 2020 (sso_rb.tle); the second's epoch year typed 56 for 20
@@ -95,3 +97,17 @@ def test_run_on_angles_in_radians_exits_2(tmp_path):
     assert "radians.csv, columns 'inc_deg' and 'raan_deg'" in done.stderr
     assert "radians? (degrees are expected" in done.stderr
 
+
+
+# ---------------------------------------------------------------------- item 7
+def test_an_injection_a_km_in_metres_is_refused_naming_the_key(tmp_path):
+    with pytest.raises(MissionError, match=r"injection a_km must be at most 100,000 km"):
+        Mission(n=3, injection=(7_178_000.0, 0.0, 98.0, 10.0))
+    Mission(n=3, injection=(42_164.0, 0.0, 0.1, 10.0))  # GEO: an Earth orbit
+    scenario = tmp_path / "injection.toml"
+    scenario.write_text("[mission]\nn = 3\ninjection = [7178000.0, 0.0, 98.0, 10.0]\n")
+    done = cli_process("run", str(scenario), "--quiet", "--out", str(tmp_path / "out"))
+    assert done.returncode == 2, done.stderr
+    assert "Traceback" not in done.stderr and not (tmp_path / "out").exists()
+    assert "injection.toml: mission.injection: injection a_km" in done.stderr
+    assert "got 7178000.0: metres?" in done.stderr
