@@ -374,13 +374,22 @@ class Catalog:
         Raises
         ------
         CatalogError
-            SGP4 cannot propagate a row over the window (the row named).
+            The catalog has no date (no epochs, no start: the paper's Table 5): SGP4
+            would fly element sets of an invented epoch, which neither the flight nor the
+            user's orbits have; or SGP4 cannot propagate a row over the window (the row
+            named).
         ValueError
             The rates are fitted already (fit the catalog as read), or ``days`` is not
             longer than two orbital periods.
         """
         from .sgp4_rates import sgp4_raan  # a layer below: its module imports no catalog
 
+        if self.start is None:
+            raise CatalogError(
+                f'{self.source}: raan_rates = "sgp4" fits each debris\' RAAN rate to SGP4 '
+                "flying its element set from its epoch, and the catalog has no epochs and no "
+                "start: give a TLE or OMM file, a CSV with an 'epoch' column, or a start date "
+                '(catalog.start, --start); or plan with raan_rates = "j2"')
         if self.raan_rates == "sgp4":
             raise ValueError(f"{self.source}: the RAAN rates are fitted to SGP4 already; "
                              "fit the catalog as read")  # fmt: skip

@@ -5,6 +5,8 @@ and the API.
   the start is taken from the bulk and the outlier is named.
 - 6: a CSV whose angles are radians is refused, naming the file and the columns.
 - 7: an injection orbit's a_km in metres exits 2 naming the scenario key.
+- 8: RAAN rates fitted to SGP4 need dated element sets: a catalog without epochs or start
+  (the paper's Table 5) is refused, saying what is needed.
 """
 
 import warnings
@@ -111,3 +113,29 @@ def test_an_injection_a_km_in_metres_is_refused_naming_the_key(tmp_path):
     assert "Traceback" not in done.stderr and not (tmp_path / "out").exists()
     assert "injection.toml: mission.injection: injection a_km" in done.stderr
     assert "got 7178000.0: metres?" in done.stderr
+
+
+# ---------------------------------------------------------------------- item 8
+def test_sgp4_rates_on_a_catalog_without_dates_exit_2_saying_what_is_needed(tmp_path):
+    done = cli_process("run", "--raan-rates", "sgp4", "--n", "3", "--quiet",
+                       "--out", str(tmp_path / "out"))  # fmt: skip
+    assert done.returncode == 2, done.stderr
+    assert "Traceback" not in done.stderr and not (tmp_path / "out").exists()
+    assert "paper Table 5: raan_rates = \"sgp4\"" in done.stderr
+    assert "no epochs and no start: give a TLE or OMM file, a CSV with an 'epoch' column" \
+        in done.stderr  # fmt: skip
+
+
+@pytest.mark.slow
+def test_sgp4_rates_of_a_csv_dated_by_its_start_say_where_the_sets_come_from(tmp_path):
+    path = tmp_path / "dated.csv"
+    path.write_text("id,a_km,e,inc_deg,raan_deg\n1,7078,0.001,98.2,10\n2,7178,0,98.6,20\n"
+                    "3,7278,0.002,99.0,30\n")  # fmt: skip
+    with pytest.raises(CatalogError, match="no epochs and no start"):
+        Catalog.from_csv(path).with_sgp4_rates(100.0)
+    assert Catalog.from_csv(path, start="2021-03-01").with_sgp4_rates(100.0).raan_rates == "sgp4"
+    done = cli_process("run", "--catalog", str(path), "--start", "2021-03-01", "--raan-rates",
+                       "sgp4", "--n", "2", "--tmax-days", "100", "--out",
+                       str(tmp_path / "out"))  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "the element sets are the catalog's elements dated at its start" in done.stderr
