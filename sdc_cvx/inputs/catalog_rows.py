@@ -210,7 +210,7 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
             epochs[pos], errors["epoch"] = to_epoch(epoch_cells[pos])
         for name, column in phases.items():  # optional, but a number where given
             if not is_blank(column[pos]):
-                errors[name] = to_float(column[pos], _no_check)[1]
+                errors[name] = to_float(column[pos], _PHASE_CHECKS[name])[1]
         if flagged:
             continue
         if not (errors["a_km"] or errors["e"]):
@@ -360,20 +360,24 @@ def _check_inc(value: float) -> str | None:
     return None if 0.0 <= value <= 180.0 else "expected a number in [0, 180], got {got}"
 
 
-def _check_raan(value: float) -> str | None:
+def _check_angle(value: float) -> str | None:
+    """An angle [deg] within :data:`MAX_ABS_RAAN_DEG` of 0 (a RAAN, a phase on the orbit)."""
     ok = -MAX_ABS_RAAN_DEG <= value <= MAX_ABS_RAAN_DEG
     return None if ok else "expected an angle in [-36000, 36000] deg (wrapped), got {got}"
 
 
 PHASE_NUMBERS = ("arglat_deg", "argp_deg", "mean_anomaly_deg", "bstar")
 """Optional columns (where a debris is on its orbit, its drag term) that must be numbers
-where a row gives them: a flight reads them (an 'abc' read as 'no arglat_deg' misled)."""
+where a row gives them: a flight reads them (an 'abc' read as 'no arglat_deg' misled).
+The angles take the RAAN's range (an arglat_deg of 1e12 is noise, not a phase)."""
+_PHASE_CHECKS = {"arglat_deg": _check_angle, "argp_deg": _check_angle,
+                 "mean_anomaly_deg": _check_angle, "bstar": _no_check}  # fmt: skip
 
 _CHECKS = {
     "a_km": _check_a,
     "e": _check_e,
     "inc_deg": _check_inc,
-    "raan_deg": _check_raan,
+    "raan_deg": _check_angle,
 }
 
 

@@ -7,6 +7,7 @@ and the API.
 - 7: an injection orbit's a_km in metres exits 2 naming the scenario key.
 - 8: RAAN rates fitted to SGP4 need dated element sets: a catalog without epochs or start
   (the paper's Table 5) is refused, saying what is needed.
+- 9: the phase angles (arglat_deg, argp_deg, mean_anomaly_deg) take the RAAN's range.
 """
 
 import warnings
@@ -139,3 +140,21 @@ def test_sgp4_rates_of_a_csv_dated_by_its_start_say_where_the_sets_come_from(tmp
                        str(tmp_path / "out"))  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert "the element sets are the catalog's elements dated at its start" in done.stderr
+
+
+# ---------------------------------------------------------------------- item 9
+@pytest.mark.parametrize("column", ["arglat_deg", "argp_deg", "mean_anomaly_deg"])
+def test_a_phase_angle_of_1e12_is_refused_as_a_raan_is(tmp_path, column):
+    path = tmp_path / "phase.csv"
+    path.write_text(f"id,a_km,e,inc_deg,raan_deg,{column}\n1,7078,0.001,98,10,-36000\n"
+                    "2,7178,0.001,98,20,1e12\n")  # fmt: skip
+    with pytest.raises(CatalogError) as caught:
+        Catalog.from_csv(path)
+    assert caught.value.problems == (
+        f"{path}, row 2 (line 3), field '{column}': expected an angle in [-36000, 36000] deg "
+        "(wrapped), got '1e12'",
+    )
+    if column == "arglat_deg":
+        done = cli_process("catalog", str(path))
+        assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+        assert "row 2 (line 3), field 'arglat_deg': expected an angle" in done.stderr
