@@ -8,6 +8,8 @@ and the API.
 - 8: RAAN rates fitted to SGP4 need dated element sets: a catalog without epochs or start
   (the paper's Table 5) is refused, saying what is needed.
 - 9: the phase angles (arglat_deg, argp_deg, mean_anomaly_deg) take the RAAN's range.
+- 10: values the MILP cannot take (1e300) and values that mean nothing (all 0, or 0 for
+  every candidate) are refused before the MILP, as an empty values file is.
 """
 
 import warnings
@@ -16,9 +18,11 @@ import pandas as pd
 import pytest
 
 from sdc_cvx.errors import CatalogError, CatalogWarning
+from sdc_cvx.inputs.campaign import Campaign
 from sdc_cvx.inputs.catalog import Catalog
 from sdc_cvx.inputs.formats import read_catalog
 from sdc_cvx.inputs.mission import Mission, MissionError
+from sdc_cvx.inputs.values import read_values
 from tests.test_cli import cli_process
 
 # five SSO rocket bodies of 2020 (sso_rb.tle); the second's epoch year typed 56 for 20
@@ -158,3 +162,45 @@ def test_a_phase_angle_of_1e12_is_refused_as_a_raan_is(tmp_path, column):
         done = cli_process("catalog", str(path))
         assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
         assert "row 2 (line 3), field 'arglat_deg': expected an angle" in done.stderr
+
+
+# ---------------------------------------------------------------------- item 10
+VALUE_SCENARIO = ('[catalog]\nvalues = "values.csv"\n[mission]\ntmax_days = 365.25\n'
+                  '[campaign]\nobjective = "max-value"\nlaunch_days = [0.0, 365.25]\n'
+                  "n = [[2, 3], [2, 2]]\ndv_budget_mps = 150.0\n")  # fmt: skip
+"""A max-value campaign of the paper's Table 5 (debris ids 1-11)."""
+
+
+@pytest.mark.parametrize(("values", "said"), [
+    ("id,value\n5,1e300\n8,7\n", "values.csv, line 2, field value: expected a number of at "
+                                  "most 1e+09, got '1e300': divide every value"),
+    ("id,value\n5,0\n8,0.0\n", "values.csv, field value: every one of the 2 rows is 0: "
+                                "such values mean nothing"),
+])  # fmt: skip
+@pytest.mark.slow
+def test_values_the_milp_cannot_take_or_that_mean_nothing_exit_2(tmp_path, values, said):
+    (tmp_path / "values.csv").write_text(values)
+    (tmp_path / "s.toml").write_text(VALUE_SCENARIO)
+    with pytest.raises(CatalogError, match="field value: e"):
+        read_values(tmp_path / "values.csv")
+    done = cli_process("campaign", str(tmp_path / "s.toml"), "--workers", "1",
+                       "--out", str(tmp_path / "out"))  # fmt: skip
+    assert done.returncode == 2, done.stderr
+    assert "Traceback" not in done.stderr and not (tmp_path / "out").exists()
+    assert "s.toml: catalog.values:" in done.stderr and said in done.stderr
+
+
+def test_campaign_values_the_milp_cannot_take_or_that_mean_nothing_are_refused():
+    def campaign(values):
+        return Campaign.of([0.0, 365.25], Mission(n=2), objective="max-value",
+                           dv_budget_mps=150.0, values=values)  # fmt: skip
+
+    with pytest.raises(MissionError, match=r"values must be at most 1e\+09"):
+        campaign({"5": 1e300, "8": 7.0})
+    with pytest.raises(MissionError, match="values are all 0 .2 debris.: such values mean"):
+        campaign({"5": 0.0, "8": 0})
+    worthless = campaign({"5": 0.0, "999": 3.0})  # worth something, but not a candidate
+    with pytest.raises(MissionError, match=r"the 1 candidate\(s\) the values name \(5\) "
+                                           "are all worth 0"):  # fmt: skip
+        worthless.check_candidates([str(k) for k in range(1, 12)])
+    campaign({"5": 1e9, "8": 0.0}).check_candidates([str(k) for k in range(1, 12)])
