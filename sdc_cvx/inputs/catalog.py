@@ -228,7 +228,8 @@ class Catalog:
             return where_labels[pos]
 
         return cls._validated(frame, source, where, start, flagged=flagged,
-                              on_invalid=on_invalid, reader_problems=reader_problems)  # fmt: skip
+                              on_invalid=on_invalid, reader_problems=reader_problems,
+                              units_known=True)  # fmt: skip
 
     @classmethod
     def paper_case(cls) -> Catalog:
@@ -261,12 +262,13 @@ class Catalog:
 
     @classmethod
     def _validated(cls, raw, source, where, start, broken=None, *, flagged=None,
-                   on_invalid="raise", reader_problems=()) -> Catalog:  # fmt: skip
+                   on_invalid="raise", reader_problems=(),
+                   units_known=False) -> Catalog:  # fmt: skip
         """Check every row of ``raw`` and build the catalog, or raise all problems
         (:func:`~sdc_cvx.inputs.catalog_rows.validate`)."""
         frame, start, invalid = validate(raw, source, where, start, broken, flagged=flagged,
-                                         on_invalid=on_invalid,
-                                         reader_problems=reader_problems)  # fmt: skip
+                                         on_invalid=on_invalid, reader_problems=reader_problems,
+                                         units_known=units_known)  # fmt: skip
         return cls(frame=frame, start=start, source=source, invalid=invalid)
 
     # ------------------------------------------------------------------ accessors

@@ -66,6 +66,7 @@ def validate(
     flagged=None,
     on_invalid="raise",
     reader_problems=(),
+    units_known=False,
 ) -> tuple[pd.DataFrame, pd.Timestamp | None, pd.DataFrame | None]:
     """Check every row of ``raw`` and build the catalog's frame, or raise all problems.
 
@@ -75,7 +76,8 @@ def validate(
     ``on_invalid="set aside"`` such rows, and those outside the physical domain
     (:func:`_check_domain`, :func:`_check_epochs`), go to the ``invalid`` frame instead of
     being problems.  ``reader_problems`` (a reader's own, by line) are raised with this
-    validation's, in one error.
+    validation's, in one error.  ``units_known``: a format reader's rows, in degrees and
+    kilometres by the format's definition (no look at their units, :func:`_check_units`).
 
     Returns
     -------
@@ -98,7 +100,7 @@ def validate(
     warn_unknown_columns(list(raw.columns), source)
     domain: dict[int, str] = dict(flagged or {})
     columns = _check_rows(raw, source, where, problems, broken or {}, domain)
-    if not problems:
+    if not problems and not units_known:
         _check_units(columns.numbers, source, problems)
     start_ts = parse_start(start, source, problems)
     if columns.epochs is not None:  # also with other problems: one error says all

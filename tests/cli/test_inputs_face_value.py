@@ -77,11 +77,23 @@ def test_the_catalog_command_keeps_the_four_good_sets(tmp_path):
 RADIANS = "id,a_km,e,inc_deg,raan_deg\n1,7078,0.001,1.71,0.5\n2,7178,0.001,1.72,2.1\n" \
           "3,7128,0.001,1.70,4.0\n4,7100,0.001,1.71,5.9\n"  # fmt: skip
 """Sun-synchronous orbits (98 deg = 1.71 rad) with their angles in radians."""
+GEO_TLE = """\
+1 90001U 20001A   20145.30230088 +.00000000 +00000-0 +00000-0 0  9999
+2 90001   0.0500   1.0000 0001000   0.0000   0.0000  1.00273791    10
+1 90002U 20001A   20145.30230088 +.00000000 +00000-0 +00000-0 0  9990
+2 90002   0.0500   2.5000 0001000   0.0000  10.0000  1.00273791    18
+1 90003U 20001A   20145.30230088 +.00000000 +00000-0 +00000-0 0  9991
+2 90003   0.0500   4.0000 0001000   0.0000  20.0000  1.00273791    17
+"""
+"""Three geostationary element sets whose angles are all small: degrees, as TLEs are."""
 
 
 @pytest.mark.parametrize("on_invalid", ["raise", "set aside"])
 def test_angles_in_radians_are_refused_naming_the_file_and_columns(tmp_path, on_invalid):
-    """Not equatorial rows (inclination 0 either way), nor two rows only: read as given."""
+    """Not equatorial rows (inclination 0 either way), nor two rows only, nor a format
+    whose angles are degrees by definition (TLE): read as given."""
+    (tmp_path / "geo.tle").write_text(GEO_TLE)
+    assert len(read_catalog(tmp_path / "geo.tle", on_invalid=on_invalid)) == 3
     path = tmp_path / "degrees.csv"
     path.write_text("id,a_km,e,inc_deg,raan_deg\n1,7078,0,0,0.5\n2,7178,0,0,2.1\n"
                     "3,7128,0,0,4.0\n")  # fmt: skip
