@@ -16,7 +16,8 @@ def scenario_argument(command):
 def start_option(command):
     return click.option("--start", default=None, metavar="DATE",
                         help="Mission start date the RAANs and day 0 refer to, ISO-8601 (UTC "
-                        "when naive) [scenario's, else the latest epoch].")(command)  # fmt: skip
+                        "when naive) [scenario's, else the latest epoch within 10 years of "
+                        "the median one].")(command)  # fmt: skip
 
 
 def raan_rates_option(command):

@@ -131,9 +131,11 @@ def with_raan_rates(catalog: Catalog, scenario: Scenario, echo) -> Catalog:
         fail(f"catalog.raan_rates: {err}")
     seconds = time.perf_counter() - started
     shift = fitted.frame["raan_rate_deg_per_day"] - catalog.frame["raan_rate_deg_per_day"]
+    built = "" if "epoch" in catalog.frame.columns else (
+        "; the element sets are the catalog's elements dated at its start (no epochs)")
     echo(f"RAAN rates fitted to SGP4 over {scenario.rate_window_days():g} days for "
          f"{len(fitted)} debris in {seconds:.2f} s: {shift.min():+.4f} to {shift.max():+.4f} "
-         "deg/day from the J2 rates")  # fmt: skip
+         f"deg/day from the J2 rates{built}")  # fmt: skip
     return fitted
 
 

@@ -26,6 +26,7 @@ import numpy as np
 
 from ..errors import MissionError
 from .mission import MAX_TMAX_DAYS, Mission, _ids_text
+from .values import MAX_VALUE, RESCALE
 from .vehicle import dv_ceiling_mps
 
 DEFAULT_PERIOD_DAYS = 365.25
@@ -198,6 +199,14 @@ class Campaign:
                       if not (_is_real(v) and np.isfinite(v) and v >= 0)]  # fmt: skip
         if bad_values:
             yield f"values must be numbers >= 0, got {bad_values[:5]}"
+        elif any(v > MAX_VALUE for _, v in self.values):
+            large = [(k, v) for k, v in self.values if v > MAX_VALUE]
+            yield (f"values must be at most {MAX_VALUE:g} (the MILP's coefficients), got "
+                   f"{large[:5]}: {RESCALE}")  # fmt: skip
+        elif self.values and not any(v for _, v in self.values):
+            yield (f"values are all 0 ({len(self.values)} debris): such values mean nothing "
+                   "(every choice of debris is worth 0); give the debris that matter a value "
+                   "> 0")  # fmt: skip
         if self.must_remove or self.remove_all:
             yield ("must_remove and remove_all are for objective = 'min-dv' (max-value chooses "
                    "what to remove)")  # fmt: skip
@@ -385,6 +394,12 @@ class Campaign:
                 f"none of the {len(self.values)} ids of the values ({sample}, ...) is a "
                 f"candidate (such as {', '.join(map(repr, ids[:3]))}): every mission would "
                 "remove nothing of value; check the values file's id column (values_columns)")
+        elif self.values and not any(v > 0 for name, v in self.values if name in known):
+            named = [name for name, _ in self.values if name in known]
+            problems.append(
+                f"the {len(named)} candidate(s) the values name ({_ids_text(named)}) are all "
+                "worth 0: every mission would remove nothing of value; give the debris that "
+                "matter a value > 0")
         if problems:
             raise MissionError("; ".join(problems))
 

@@ -163,7 +163,9 @@ class Catalog:
             (:func:`csv_delimiter`); numbers take a decimal point.
         start : str or datetime-like, optional
             Mission start date (UTC when naive), within :data:`MAX_PROPAGATION_DAYS` of
-            the epochs.  Default: the latest epoch, or None without epochs.
+            the epochs.  Default: the latest epoch within :data:`MAX_PROPAGATION_DAYS` of
+            the median epoch (a wrong epoch far from the others is named in a
+            :class:`~sdc_cvx.errors.CatalogWarning`, not taken), or None without epochs.
         on_invalid : {"raise", "set aside"}
             Rows that are not orbits of this model (README, "Physical domain"): a
             problem (default), or set aside in ``Catalog.invalid``.
@@ -226,7 +228,8 @@ class Catalog:
             return where_labels[pos]
 
         return cls._validated(frame, source, where, start, flagged=flagged,
-                              on_invalid=on_invalid, reader_problems=reader_problems)  # fmt: skip
+                              on_invalid=on_invalid, reader_problems=reader_problems,
+                              units_known=True)  # fmt: skip
 
     @classmethod
     def paper_case(cls) -> Catalog:
@@ -259,12 +262,13 @@ class Catalog:
 
     @classmethod
     def _validated(cls, raw, source, where, start, broken=None, *, flagged=None,
-                   on_invalid="raise", reader_problems=()) -> Catalog:  # fmt: skip
+                   on_invalid="raise", reader_problems=(),
+                   units_known=False) -> Catalog:  # fmt: skip
         """Check every row of ``raw`` and build the catalog, or raise all problems
         (:func:`~sdc_cvx.inputs.catalog_rows.validate`)."""
         frame, start, invalid = validate(raw, source, where, start, broken, flagged=flagged,
-                                         on_invalid=on_invalid,
-                                         reader_problems=reader_problems)  # fmt: skip
+                                         on_invalid=on_invalid, reader_problems=reader_problems,
+                                         units_known=units_known)  # fmt: skip
         return cls(frame=frame, start=start, source=source, invalid=invalid)
 
     # ------------------------------------------------------------------ accessors
@@ -372,13 +376,22 @@ class Catalog:
         Raises
         ------
         CatalogError
-            SGP4 cannot propagate a row over the window (the row named).
+            The catalog has no date (no epochs, no start: the paper's Table 5): SGP4
+            would fly element sets of an invented epoch, which neither the flight nor the
+            user's orbits have; or SGP4 cannot propagate a row over the window (the row
+            named).
         ValueError
             The rates are fitted already (fit the catalog as read), or ``days`` is not
             longer than two orbital periods.
         """
         from .sgp4_rates import sgp4_raan  # a layer below: its module imports no catalog
 
+        if self.start is None:
+            raise CatalogError(
+                f'{self.source}: raan_rates = "sgp4" fits each debris\' RAAN rate to SGP4 '
+                "flying its element set from its epoch, and the catalog has no epochs and no "
+                "start: give a TLE or OMM file, a CSV with an 'epoch' column, or a start date "
+                '(catalog.start, --start); or plan with raan_rates = "j2"')
         if self.raan_rates == "sgp4":
             raise ValueError(f"{self.source}: the RAAN rates are fitted to SGP4 already; "
                              "fit the catalog as read")  # fmt: skip

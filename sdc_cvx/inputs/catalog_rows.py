@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..errors import CatalogError, CatalogWarning
+from ..errors import CatalogError, CatalogWarning, listing
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY, raan_rate
 from .catalog_text import (
     DERIVED_COLUMNS,
@@ -66,6 +66,7 @@ def validate(
     flagged=None,
     on_invalid="raise",
     reader_problems=(),
+    units_known=False,
 ) -> tuple[pd.DataFrame, pd.Timestamp | None, pd.DataFrame | None]:
     """Check every row of ``raw`` and build the catalog's frame, or raise all problems.
 
@@ -75,14 +76,16 @@ def validate(
     ``on_invalid="set aside"`` such rows, and those outside the physical domain
     (:func:`_check_domain`, :func:`_check_epochs`), go to the ``invalid`` frame instead of
     being problems.  ``reader_problems`` (a reader's own, by line) are raised with this
-    validation's, in one error.
+    validation's, in one error.  ``units_known``: a format reader's rows, in degrees and
+    kilometres by the format's definition (no look at their units, :func:`_check_units`).
 
     Returns
     -------
     frame : pandas.DataFrame
         The catalog's rows (``Catalog.frame``), RAANs at the start date.
     start : pandas.Timestamp or None
-        The start date: ``start`` as given, else the latest epoch, else None.
+        The start date: ``start`` as given, else the latest epoch of the bulk
+        (:func:`_bulk_start`), else None.
     invalid : pandas.DataFrame or None
         The rows set aside (``Catalog.invalid``), or None.
 
@@ -97,14 +100,14 @@ def validate(
     warn_unknown_columns(list(raw.columns), source)
     domain: dict[int, str] = dict(flagged or {})
     columns = _check_rows(raw, source, where, problems, broken or {}, domain)
-    if not problems:
-        _warn_units(columns.numbers, source)
+    if not problems and not units_known:
+        _check_units(columns.numbers, source, problems)
     start_ts = parse_start(start, source, problems)
     if columns.epochs is not None:  # also with other problems: one error says all
         usable = [e for pos, e in enumerate(columns.epochs)
                   if pos not in domain and e is not None]  # fmt: skip
         if start_ts is None and usable:
-            start_ts = max(usable)
+            start_ts = _bulk_start(columns.epochs, domain, source, where)
         _check_epochs(columns.epochs, start_ts, start is not None, source, domain, problems)
     aside = on_invalid == "set aside"
     if not aside:
@@ -126,21 +129,29 @@ def validate(
 
 
 # ---------------------------------------------------------------------- checking
-def _warn_units(numbers: dict, source: str) -> None:
-    """A :class:`CatalogWarning` where the values look like other units than the
-    columns': every angle of three rows or more within [0, 2 pi] (radians), or a median
-    semi-major axis above 100,000 km (metres)."""
+def _check_units(numbers: dict, source: str, problems: list[str]) -> None:
+    """Values that look like other units than the columns'.
+
+    Radians are refused (a problem): three rows or more, every inclination within
+    [0, pi] and not all 0, every |RAAN| within 2 pi.  In degrees these are orbits within
+    3.1 deg of the equator whose nodes all lie within 6.3 deg of each other, which no
+    catalogue of debris holds; in radians they are any orbits (an SSO's 98 deg is 1.71 rad),
+    and planned as degrees they were 1.7 deg orbits (issue 48: "optimal", 23.6 m/s for
+    0.03 deg of plane change).  Equatorial rows (every inclination 0) are the same in both
+    units.  A median semi-major axis above 100,000 km (metres?) draws a
+    :class:`CatalogWarning`: each such row is refused or set aside by the domain check.
+    """
     inc, raan, a_km = (np.asarray(numbers.get(k, []), dtype=float)
                        for k in ("inc_deg", "raan_deg", "a_km"))  # fmt: skip
-    said = []
-    if len(inc) >= 3 and np.nanmax(inc) <= np.pi and np.nanmax(raan) <= 2.0 * np.pi:
-        said.append(f"inc_deg and raan_deg: every value is at most {2.0 * np.pi:.3f}: "
-                    "radians? (degrees are expected)")  # fmt: skip
+    if (len(inc) >= 3 and np.nanmax(inc) <= np.pi and np.nanmax(inc) > 0
+            and np.nanmax(np.abs(raan)) <= 2.0 * np.pi):  # fmt: skip
+        problems.append(
+            f"{source}, columns 'inc_deg' and 'raan_deg': every inclination is at most "
+            f"{np.nanmax(inc):.4g} and every RAAN within {2.0 * np.pi:.4f} of 0 in all "
+            f"{len(inc)} rows: radians? (degrees are expected: multiply by 180/pi = 57.2958)")
     if len(a_km) and np.nanmedian(a_km) > 1e5:
-        said.append(f"a_km: a median of {np.nanmedian(a_km):.6g}: metres? (kilometres are "
-                    "expected)")  # fmt: skip
-    for text in said:
-        warnings.warn(f"{source}: {text}", CatalogWarning, stacklevel=5)
+        warnings.warn(f"{source}: a_km: a median of {np.nanmedian(a_km):.6g}: metres? "
+                      "(kilometres are expected)", CatalogWarning, stacklevel=5)  # fmt: skip
 
 
 @dataclass
@@ -201,7 +212,7 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
             epochs[pos], errors["epoch"] = to_epoch(epoch_cells[pos])
         for name, column in phases.items():  # optional, but a number where given
             if not is_blank(column[pos]):
-                errors[name] = to_float(column[pos], _no_check)[1]
+                errors[name] = to_float(column[pos], _PHASE_CHECKS[name])[1]
         if flagged:
             continue
         if not (errors["a_km"] or errors["e"]):
@@ -219,6 +230,38 @@ def _check_rows(raw: pd.DataFrame, source: str, where: Callable, problems, broke
 def _no_check(value: float) -> None:
     """The check of a value a reader already found is not an orbit of this model."""
     return None
+
+
+def _bulk_start(epochs, domain, source: str, where: Callable[[int], str]) -> pd.Timestamp:
+    """The default start: the latest epoch of the largest 10-year window of epochs.
+
+    Each epoch counts the epochs within :data:`MAX_PROPAGATION_DAYS` before it (itself
+    included); the start is the latest epoch of those counting the most (rows in
+    ``domain`` and without an epoch left out).  In a catalogue the epochs lie days to
+    months apart: the latest epoch counts them all and is the start, the freshest element
+    set.  One wrong epoch (a 2-digit TLE year read in the wrong century: 2056 among sets of
+    2020) counts only itself: it is not the start, which would leave every good set more
+    than 10 years from it; the epochs later than the start by more than 10 years are named
+    in a :class:`CatalogWarning` (and then by :func:`_check_epochs`, as too far from it).
+    """
+    positions = [pos for pos, e in enumerate(epochs) if pos not in domain and e is not None]
+    stamps = pd.DatetimeIndex([epochs[pos] for pos in positions]).as_unit("ns")
+    ns = np.sort(stamps.asi8)
+    window = int(MAX_PROPAGATION_DAYS * SECONDS_PER_DAY * 1e9)
+    counts = np.arange(len(ns)) - np.searchsorted(ns, ns - window, side="left") + 1
+    start = pd.Timestamp(int(ns[np.flatnonzero(counts == counts.max())[-1]]), tz="UTC")
+    later = [k for k in range(len(stamps)) if stamps[k].value - start.value > window]
+    if later:
+        named = listing(f"{where(positions[k])}: {stamps[k].isoformat()} "
+                        f"({(stamps[k] - start).days / 365.25:.1f} years later)"
+                        for k in later)  # fmt: skip
+        warnings.warn(
+            f"{source}: the start is {start.isoformat()}, the latest epoch of the most "
+            f"epochs within {MAX_PROPAGATION_DAYS:g} days (10 years) of each other "
+            f"({counts.max()} of {len(ns)}); {len(later)} epoch(s) more than 10 years later "
+            f"are not taken as the start (a wrong year?): {named}", CatalogWarning,
+            stacklevel=5)  # fmt: skip
+    return start
 
 
 def _check_epochs(epochs, start, given: bool, source, domain, problems) -> None:
@@ -319,20 +362,24 @@ def _check_inc(value: float) -> str | None:
     return None if 0.0 <= value <= 180.0 else "expected a number in [0, 180], got {got}"
 
 
-def _check_raan(value: float) -> str | None:
+def _check_angle(value: float) -> str | None:
+    """An angle [deg] within :data:`MAX_ABS_RAAN_DEG` of 0 (a RAAN, a phase on the orbit)."""
     ok = -MAX_ABS_RAAN_DEG <= value <= MAX_ABS_RAAN_DEG
     return None if ok else "expected an angle in [-36000, 36000] deg (wrapped), got {got}"
 
 
 PHASE_NUMBERS = ("arglat_deg", "argp_deg", "mean_anomaly_deg", "bstar")
 """Optional columns (where a debris is on its orbit, its drag term) that must be numbers
-where a row gives them: a flight reads them (an 'abc' read as 'no arglat_deg' misled)."""
+where a row gives them: a flight reads them (an 'abc' read as 'no arglat_deg' misled).
+The angles take the RAAN's range (an arglat_deg of 1e12 is noise, not a phase)."""
+_PHASE_CHECKS = {"arglat_deg": _check_angle, "argp_deg": _check_angle,
+                 "mean_anomaly_deg": _check_angle, "bstar": _no_check}  # fmt: skip
 
 _CHECKS = {
     "a_km": _check_a,
     "e": _check_e,
     "inc_deg": _check_inc,
-    "raan_deg": _check_raan,
+    "raan_deg": _check_angle,
 }
 
 

@@ -37,6 +37,9 @@ a zero-length leg of the SSO rocket bodies flown in 5 days costs 1.5 m/s more th
 INJECTION_MIN_PERIGEE_KM = 150.0
 """Lowest perigee altitude of an injection orbit [km], that of a catalog orbit
 (``inputs.catalog.MIN_PERIGEE_KM``; not imported: this module stays free of pandas)."""
+INJECTION_MAX_A_KM = 100_000.0
+"""Largest semi-major axis of an injection orbit [km], that of a catalog orbit
+(``inputs.catalog.MAX_A_KM``): an Earth orbit; an ``a_km`` in metres is far above."""
 DRIFT_ALTITUDE_RANGE_KM = (150.0, 2000.0)
 """Where a drift altitude band may lie [km]: from the lowest perigee of a catalog orbit
 to the top of LEO (the catalog's limits, README "Physical domain")."""
@@ -350,6 +353,9 @@ class Mission:
                 a_km, e, inc, _ = self.injection
                 if not a_km > R_EARTH / 1e3:
                     yield f"injection a_km must exceed the Earth's radius, got {a_km!r}"
+                elif a_km > INJECTION_MAX_A_KM:
+                    yield (f"injection a_km must be at most {INJECTION_MAX_A_KM:,.0f} km (an "
+                           f"Earth orbit), got {a_km!r}: metres? (kilometres are expected)")
                 if not 0 <= e < 1:
                     yield f"injection e must be in [0, 1), got {e!r}"
                 if not 0 <= inc <= 180:

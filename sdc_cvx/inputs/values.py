@@ -3,9 +3,10 @@
 A programme removes the debris that matter most: ``[catalog] values = "FILE.csv"`` gives
 each debris' value (a risk index, a ranking turned into a score, a mass...) as a CSV
 table with a header ``id,value``: ids as in the catalog (NORAD catalog numbers for
-TLE/OMM), values numbers >= 0.  Debris the file does not name are worth 0; ids the
-catalog does not hold are allowed (a ranking of the whole catalogue read beside a
-filtered one).  ``objective = "max-value"`` (:mod:`sdc_cvx.campaign.value`) uses them.
+TLE/OMM), values numbers in [0, 1e9] (:data:`MAX_VALUE`), not all 0.  Debris the file
+does not name are worth 0; ids the catalog does not hold are allowed (a ranking of the
+whole catalogue read beside a filtered one).  ``objective = "max-value"``
+(:mod:`sdc_cvx.campaign.value`) uses them.
 """
 
 from __future__ import annotations
@@ -15,6 +16,16 @@ import math
 from pathlib import Path
 
 from ..errors import CatalogError
+
+MAX_VALUE = 1e9
+"""Largest value of a debris: the MILP takes values as coefficients, and its backends'
+tolerances and limits are absolute (HiGHS: 1e-7 feasibility, coefficients above 1e15
+refused): values of 1e15 and more ended in "solver failure" (issue 48), and 1e9 leaves
+six orders of magnitude for sums and the value rows.  Values rescale freely: a plan of
+most value is that of the values divided by any number."""
+RESCALE = ("divide every value by the same number (the plan of most value is the same; "
+           "with objective = 'value-per-dv', multiply price_per_value_mps by it)")
+"""What to do with values above :data:`MAX_VALUE`, in the messages about them."""
 
 
 def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
@@ -28,8 +39,8 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
     ------
     CatalogError
         The file cannot be read, has no ``id`` and ``value`` columns or no rows, or a
-        row whose id is blank or repeated or whose value is not a number >= 0 (every such
-        row named, with its line).
+        row whose id is blank or repeated or whose value is not a number in [0,
+        :data:`MAX_VALUE`] (every such row named, with its line), or every value is 0.
 
     Notes
     -----
@@ -78,6 +89,10 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
             problems.append(f"{where}, field {value_name}: expected a number >= 0, got "
                             f"{text_value!r}")
             continue
+        if value > MAX_VALUE:
+            problems.append(f"{where}, field {value_name}: expected a number of at most "
+                            f"{MAX_VALUE:g}, got {text_value!r}: {RESCALE}")  # fmt: skip
+            continue
         seen[ident] = line
         values[ident] = value
     if problems:
@@ -85,6 +100,10 @@ def read_values(path: str | Path, columns: tuple[str, str] = ("id", "value"), *,
     if not values:
         raise CatalogError(f"{source}: no rows under the header: a {what} file names each "
                            f"debris with its {value_name}")  # fmt: skip
+    if not any(values.values()):
+        raise CatalogError(f"{source}, field {value_name}: every one of the {len(values)} "
+                           f"rows is 0: such {what} mean nothing (every choice of debris "
+                           f"is worth 0); give the debris that matter a {value_name} > 0")
     return values
 
 

@@ -135,12 +135,13 @@ def test_a_row_whose_epoch_is_the_start_keeps_its_raan_and_flies_the_same():
     np.testing.assert_allclose(r1, r2, rtol=0, atol=1.0)  # [m]
 
 
-def test_the_paper_case_without_dates_gets_sgp4_rates_too():
-    fitted = Catalog.paper_case().with_sgp4_rates(365.25)
-    shift = (
-        fitted.frame["raan_rate_deg_per_day"] - Catalog.paper_case().frame["raan_rate_deg_per_day"]
-    )
-    assert fitted.start is None and shift.between(-0.005, -0.001).all()
+def test_a_catalog_without_dates_gets_no_sgp4_rates():
+    """Issue 48, item 8: the paper case (no epochs, no start) was fitted from an invented
+    epoch and silently answered another plan; it is refused, saying what is needed (also
+    tests/cli/test_inputs_face_value.py)."""
+    for catalog in (Catalog.paper_case(), csv_catalog()):
+        with pytest.raises(CatalogError, match="has no epochs and no start: give a TLE"):
+            catalog.with_sgp4_rates(365.25)
 
 
 def test_an_element_set_sgp4_cannot_fly_over_the_window_is_named():
