@@ -1,0 +1,51 @@
+"""The Python API as a notebook user calls it (issue 48, items 13-16): a wrong argument is
+one of the package's errors (:mod:`sdc_cvx.errors`), in one line naming the argument,
+never a raw ``TypeError``, ``ValueError`` or numpy error."""
+
+import pytest
+
+from sdc_cvx import SolverOptions
+from sdc_cvx.errors import MissionError
+from sdc_cvx.milp.types import MILP_BACKENDS
+
+
+def assert_one_line(err: pytest.ExceptionInfo, *words: str) -> None:
+    text = str(err.value)
+    assert "\n" not in text, text
+    for word in words:
+        assert word in text, text
+
+
+# --------------------------------------------------------------- item 16: solver options
+@pytest.mark.parametrize(("options", "named"), [
+    (dict(gap=2), "gap must be a number in [0, 1)"),
+    (dict(gap="0.1"), "gap must be"),
+    (dict(method="fast"), "method must be one of certified, paper"),
+    (dict(backend="NOPE"), "backend must be one of HIGHS, SCIP"),
+    (dict(backend=5), "backend must be the name of a MILP backend"),
+    (dict(fallback=[5]), "fallback must name MILP backends"),
+    (dict(fallback=3), "fallback must be a backend name"),
+    (dict(time_limit_s=float("nan")), "time_limit_s must be > 0"),
+    (dict(time_limit_s="60"), "time_limit_s must be"),
+    (dict(mip_gap=1.5), "mip_gap must be in [0, 1)"),
+    (dict(threads=0), "threads must be a positive integer"),
+    (dict(seed=1.5), "seed must be an integer"),
+    (dict(verbose="yes"), "verbose must be True or False"),
+])  # fmt: skip
+def test_solver_options_raise_the_package_error_of_option_rules(options, named):
+    """``SolverOptions(gap=2)`` is refused as ``solve_campaign(gap=2)`` is: a MissionError
+    (it was a ValueError), and an unknown backend when the options are made, not when a
+    MILP runs (or never: a certified search that needs no MILP ran with ``NOPE``)."""
+    with pytest.raises(MissionError) as err:
+        SolverOptions(**options)
+    assert_one_line(err, named)
+
+
+def test_a_known_backend_is_accepted_installed_or_not_an_unknown_one_never():
+    """A known backend not installed here is accepted when the options are made (and
+    refused when a MILP runs: ``SolverFailure``, 'is not installed'); a name no backend
+    has is refused at once, in the fallback chain too."""
+    for name in MILP_BACKENDS:
+        assert SolverOptions(backend=name.lower(), fallback=name).backend == name
+    with pytest.raises(MissionError, match="fallback must name MILP backends.*got HIGS"):
+        SolverOptions(fallback=("SCIP", "HiGS"))
