@@ -4,8 +4,8 @@ never a raw ``TypeError``, ``ValueError`` or numpy error."""
 
 import pytest
 
-from sdc_cvx import SolverOptions
-from sdc_cvx.errors import MissionError
+from sdc_cvx import Catalog, SolverOptions
+from sdc_cvx.errors import CatalogError, MissionError
 from sdc_cvx.milp.types import MILP_BACKENDS
 
 
@@ -49,3 +49,31 @@ def test_a_known_backend_is_accepted_installed_or_not_an_unknown_one_never():
         assert SolverOptions(backend=name.lower(), fallback=name).backend == name
     with pytest.raises(MissionError, match="fallback must name MILP backends.*got HIGS"):
         SolverOptions(fallback=("SCIP", "HiGS"))
+
+
+# ------------------------------------------------------------------ item 13: the catalog
+@pytest.mark.parametrize("days", [float("nan"), float("inf"), "10", None, True, 1e12])
+def test_advanced_refuses_what_is_not_a_number_of_days(days):
+    """``advanced(nan)`` gave NaN RAANs (then a raw ValueError in ``solve``),
+    ``advanced("10")`` a numpy UFuncTypeError."""
+    with pytest.raises(CatalogError) as err:
+        Catalog.paper_case().advanced(days)
+    assert_one_line(err, "Catalog.advanced(days)", "days must be a number", repr(days))
+
+
+def test_advanced_refuses_a_j2_that_is_not_a_positive_number():
+    with pytest.raises(CatalogError, match=r"j2 must be a number > 0, got 'x'"):
+        Catalog.paper_case().advanced(10.0, j2="x")
+
+
+def test_subset_takes_one_int_id_as_a_one_element_selection():
+    catalog = Catalog.paper_case()
+    assert catalog.subset(3).ids == ("3",) == catalog.subset("3").ids
+    assert catalog.subset([3, "5"]).ids == ("3", "5")
+
+
+@pytest.mark.parametrize(("ids", "shown"), [(3.0, "3.0"), ([["3"]], "['3']"), ([None], "None")])
+def test_subset_refuses_what_is_not_an_id(ids, shown):
+    with pytest.raises(CatalogError) as err:
+        Catalog.paper_case().subset(ids)
+    assert_one_line(err, "Catalog.subset(ids)", "strings or integers", shown)

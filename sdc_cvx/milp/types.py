@@ -79,6 +79,13 @@ class SolverOptions:
         Let the backend presolve (None: its default).  The certified search turns it
         off for HiGHS: on its time-expanded relaxations HiGHS's presolve took 29 s
         where the solve alone took 0.9 s (``benchmarks/certify.py``).
+
+    Raises
+    ------
+    MissionError
+        An option out of its range or of the wrong type, or a backend name that is none
+        of :data:`MILP_BACKENDS` (a known backend not installed here is accepted: a
+        solve that needs a MILP then fails with :class:`~sdc_cvx.errors.SolverFailure`).
     """
 
     backend: str = DEFAULT_BACKEND
