@@ -4,7 +4,7 @@ never a raw ``TypeError``, ``ValueError`` or numpy error."""
 
 import pytest
 
-from sdc_cvx import Catalog, SolverOptions
+from sdc_cvx import Campaign, Catalog, Mission, SolverOptions
 from sdc_cvx.errors import CatalogError, MissionError
 from sdc_cvx.milp.types import MILP_BACKENDS
 
@@ -77,3 +77,48 @@ def test_subset_refuses_what_is_not_an_id(ids, shown):
     with pytest.raises(CatalogError) as err:
         Catalog.paper_case().subset(ids)
     assert_one_line(err, "Catalog.subset(ids)", "strings or integers", shown)
+
+
+# --------------------------------------------------------------- item 14: the mission
+@pytest.mark.parametrize(("fields", "words"), [
+    (dict(drift_altitude_km=400), ["drift_altitude_km must be (low, high)",
+                                   "got 400 (not a pair)"]),
+    (dict(drift_altitude_km="400-1200"), ["drift_altitude_km", "got '400-1200' (a string)"]),
+    (dict(injection="orbit"), ["injection must be (a_km, e, inc_deg, raan_deg)",
+                               "got 'orbit' (a string)"]),
+    (dict(injection=7000.0), ["injection must be", "got 7000.0"]),
+    (dict(first=["5", "6"]), ["first must be one debris id", "['5', '6']",
+                              "must_include takes several"]),
+    (dict(first=5.0), ["first must be one debris id (a string or an integer), got 5.0"]),
+    (dict(must_include=[5.0, "6"]), ["must_include must be debris ids", "got 5.0"]),
+    (dict(exclude=[["1"]]), ["exclude must be debris ids", "got ['1']"]),
+    (dict(must_include=None), ["must_include must be debris ids", "got None"]),
+])  # fmt: skip
+def test_a_mission_refuses_what_is_not_of_its_fields_kind(fields, words):
+    """A scalar where a (low, high) pair is expected was a TypeError, a string was split
+    into its characters in the message, a list as ``first`` (or a float id, which no
+    catalog id matches) was taken as one id and failed only in ``solve``."""
+    with pytest.raises(MissionError) as err:
+        Mission(**fields)
+    assert_one_line(err, *words)
+    assert "'4', '0', '0'" not in str(err.value) and "'o', 'r'" not in str(err.value)
+
+
+@pytest.mark.parametrize(("options", "said"), [
+    (dict(n="3"), "n must be a number or a sequence of numbers, got '3' (a string)"),
+    (dict(tmax_days="100"), "tmax_days must be a number or a sequence of numbers, got '100'"),
+    (dict(n=["3", "4"]), "n must be an integer, got '3'"),
+])  # fmt: skip
+def test_a_campaign_says_a_string_as_given(options, said):
+    """``Campaign.of([0, 100], n="3")`` said "n ranges must be [n_min, n_max] pairs, got
+    ['3']": the string split into characters, each taken for a range."""
+    with pytest.raises(MissionError) as err:
+        Campaign.of([0.0, 100.0], **options)
+    assert_one_line(err, said)
+
+
+def test_a_campaign_says_a_string_of_launch_days_as_given():
+    with pytest.raises(MissionError, match=r"launch_days must be .*got '01' \(a string\)"):
+        Campaign.of("01")
+    with pytest.raises(MissionError, match=r"launch_days must be numbers .*got '01' \(a string"):
+        Campaign(launch_days="01", missions=(Mission(), Mission()))

@@ -101,6 +101,9 @@ class Campaign:
     """The budgets are the vehicles' tanks' ΔV ceilings, not given."""
 
     def __post_init__(self):
+        if isinstance(self.launch_days, str):  # said, not split into its characters
+            raise MissionError(f"invalid campaign: launch_days must be numbers [days], got "
+                               f"{self.launch_days!r} (a string)")  # fmt: skip
         if isinstance(self.launch_days, numbers.Real):
             object.__setattr__(self, "launch_days", (self.launch_days,))
         if isinstance(self.must_remove, str):  # one id, as Mission's must_include takes it
@@ -269,9 +272,14 @@ class Campaign:
         value_options
             ``remove_all``, ``objective``, ``dv_budget_mps``, ``values`` (see the class).
         """
+        for name, value in (("launch_days", launch_days), ("n", n), ("tmax_days", tmax_days)):
+            if isinstance(value, str):  # said, not split into its characters
+                raise MissionError(f"invalid campaign: {name} must be a number or a sequence "
+                                   f"of numbers, got {value!r} (a string)")  # fmt: skip
         mission = Mission() if mission is None else mission
         days = (launch_days,) if isinstance(launch_days, numbers.Real) else tuple(launch_days)
-        if isinstance(n, Sequence) and any(isinstance(k, Sequence) for k in n):
+        if isinstance(n, Sequence) and any(isinstance(k, Sequence) and not isinstance(k, str)
+                                           for k in n):  # fmt: skip
             ranges = [tuple(k) if isinstance(k, Sequence) else (k, k) for k in n]
             if any(len(pair) != 2 for pair in ranges):
                 raise MissionError(f"invalid campaign: n ranges must be [n_min, n_max] pairs, "
