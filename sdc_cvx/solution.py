@@ -394,6 +394,28 @@ class Solution:
                                        {"scenario_toml": scenario_toml})  # fmt: skip
         return save_solution(self, folder, formats=formats, scenario_toml=scenario_toml)
 
+    @classmethod
+    def load(cls, folder) -> Solution:
+        """The solution a run folder holds (``solution.json``, written by :meth:`save`,
+        ``python -m sdc_cvx run --out`` or a campaign's mission folder), for a notebook.
+
+        Path, legs, totals, status, mission, history and notes are those saved (a
+        ``save`` of the loaded solution writes the same ``solution.json``).  Its
+        ``catalog`` holds the path's debris as planned (``solution.json``'s ``debris``,
+        at day 0) and no other candidate: the figures draw those; to fly the plan
+        against the catalog file, ``python -m sdc_cvx fly FOLDER``
+        (:meth:`sdc_cvx.flight.Flight.load` reopens its flight).
+
+        Raises
+        ------
+        SolutionFileError
+            (an ``InputError``) no ``solution.json`` in ``folder``, or one that is not
+            what ``save`` writes: the message names the file and the field.
+        """
+        from .flight.solution_file import read_solution  # pandas only; flight's reader
+
+        return read_solution(folder, cls, Leg, IterationRecord, RunStatus)
+
     def plot(self) -> dict:
         """The run folder's four figures (matplotlib ``Figure`` by name: ``orbits``,
         ``raan``, ``cost``, ``iterations``), drawn and not saved."""

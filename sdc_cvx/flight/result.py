@@ -293,6 +293,21 @@ class Flight:
                 "fits": burnt.fits}  # fmt: skip
 
     # -- files ------------------------------------------------------------------------
+    @classmethod
+    def load(cls, folder) -> Flight:
+        """The flight :meth:`save` wrote in ``folder`` (a run folder flown, or its
+        ``flight/``), for a notebook: tables, totals, status and trajectory as saved, the
+        plan the run folder's ``solution.json`` (:meth:`sdc_cvx.Solution.load`).
+
+        Raises
+        ------
+        FlightError
+            No flight there, or a file that is not what ``save`` writes.
+        """
+        from .reopen import read_flight
+
+        return read_flight(folder, cls, Maneuver, Rendezvous)
+
     def save(self, run_folder) -> list[str]:
         """Write ``run_folder/flight/`` at once (aside, then swapped in; ``run_folder``
         made if need be); the paths written.
