@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import MissionError
+from ..errors import MissionError, listing
 from .mission import MAX_TMAX_DAYS, Mission, _ids_text
 from .vehicle import dv_ceiling_mps
 
@@ -136,13 +136,15 @@ class Campaign:
             return
         bad = [d for d in days if not _is_real(d) or not 0 <= d <= MAX_LAUNCH_DAY]
         if bad:
+            given = (f"; {len(bad)} of the {len(days)} given are not: " if len(bad) > 1
+                     else ", got ")  # a count, not a line of thousands of characters
             yield (
                 f"launch_days must be numbers in [0, {MAX_LAUNCH_DAY:g}] days (10 years: "
-                f"the model leaves out drag and decay), got {list(bad)}"
+                f"the model leaves out drag and decay){given}{listing(bad)}"
             )
             return
         if any(b <= a for a, b in zip(days[:-1], days[1:], strict=True)):
-            yield f"launch_days must increase strictly, got {list(days)}"
+            yield f"launch_days must increase strictly, got {listing(days)}"
         if len(self.missions) != len(days):
             yield f"{len(days)} launch days but {len(self.missions)} missions"
         for k, mission in enumerate(self.missions, start=1):

@@ -1,0 +1,36 @@
+"""Messages a new user reads (issue 48, item 20): a count where a list would be a line of
+thousands of characters, the help naming every catalog format, no "others" when there are
+none."""
+
+from click.testing import CliRunner
+
+from sdc_cvx import Campaign
+from sdc_cvx.cli import main
+from sdc_cvx.errors import MissionError
+
+
+def test_launch_days_past_ten_years_are_counted_not_listed():
+    """360 launches 30 days apart, 307 of them past 10 years: a 5,489-character line."""
+    days = [3600.0 + k for k in range(360)]
+    try:
+        Campaign.of(days)
+    except MissionError as err:
+        text = str(err)
+    assert len(text) < 400 and "\n" not in text, text
+    assert "307 of the 360 given are not: 3653.0, 3654.0" in text and "and 295 more" in text
+
+
+def test_run_help_names_every_catalog_format():
+    """``run --help`` said the catalog is a CSV (TLE, OMM and GTOC9 files are read too)."""
+    text = CliRunner().invoke(main, ["run", "--help"], terminal_width=200).output
+    catalog = " ".join(text.split("--catalog", 1)[1].split("--format", 1)[0].split())
+    assert "CSV" in catalog and "TLE" in catalog and "OMM" in catalog and "GTOC9" in catalog
+
+
+def test_values_named_says_no_others_when_every_candidate_is_named():
+    """"18 of the 18 candidates are named (the others are worth 0)"."""
+    from sdc_cvx.cli.campaign import values_named
+
+    assert "others" not in values_named(18, 18, "values.csv")
+    assert "every one of the 18 candidates" in values_named(18, 18, "values.csv")
+    assert "(the other 15 are worth 0)" in values_named(3, 18, "values.csv")
