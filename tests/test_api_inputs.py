@@ -122,3 +122,20 @@ def test_a_campaign_says_a_string_of_launch_days_as_given():
         Campaign.of("01")
     with pytest.raises(MissionError, match=r"launch_days must be numbers .*got '01' \(a string"):
         Campaign(launch_days="01", missions=(Mission(), Mission()))
+
+
+# ------------------------------------------------- item 20: "missing", "not finite"
+@pytest.mark.parametrize(("fields", "said"), [
+    (dict(tmax_days=None), "tmax_days is missing (None)"),
+    (dict(tmax_days=float("inf")), "tmax_days is not finite (inf)"),
+    (dict(preopt_days=float("inf")), "preopt_days is not finite (inf)"),  # was accepted
+    (dict(operations_dv_mps=float("inf")), "operations_dv_mps is not finite (inf)"),
+    (dict(j2=float("nan")), "j2 is not finite (nan)"),
+    (dict(deorbit_perigee_km=None), "deorbit_perigee_km is missing (None)"),
+])  # fmt: skip
+def test_a_mission_says_a_value_missing_or_not_finite(fields, said):
+    """"got None" said nothing of a value left out, "got inf" of one not finite (and
+    ``preopt_days = inf`` or ``operations_dv_mps = inf`` were taken)."""
+    with pytest.raises(MissionError) as err:
+        Mission(**fields)
+    assert_one_line(err, said)

@@ -16,6 +16,7 @@ References
 from __future__ import annotations
 
 import dataclasses
+import math
 import numbers
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -186,7 +187,15 @@ class Mission:
                    "operations_dv_mps", "min_transfer_days")  # fmt: skip
         wrong_type = {name for name in numeric if not _is_real(getattr(self, name))}
         for name in sorted(wrong_type):
-            yield f"{name} must be a number, got {getattr(self, name)!r}"
+            value = getattr(self, name)
+            yield (f"{name} is missing (None): give a number" if value is None
+                   else f"{name} must be a number, got {value!r}")  # fmt: skip
+        infinite = {name for name in numeric if name not in wrong_type
+                    and not math.isfinite(getattr(self, name))
+                    and not (name == "dv_max_mps" and getattr(self, name) > 0)}  # inf: no cap
+        for name in sorted(infinite):
+            yield f"{name} is not finite ({getattr(self, name)!r}): give a finite number"
+        wrong_type |= infinite
         for name in ("tmax_days", "preopt_days", "dv_max_mps", "j2"):
             if name not in wrong_type and not getattr(self, name) > 0:
                 yield f"{name} must be > 0, got {getattr(self, name)!r}"
@@ -357,8 +366,11 @@ class Mission:
         yield from self._vehicle_problems()
         if self.deorbit_by not in ("kit", "vehicle"):
             yield f"deorbit_by must be 'kit' or 'vehicle', got {self.deorbit_by!r}"
-        if not (_is_real(self.deorbit_perigee_km) and self.deorbit_perigee_km >= 0):
-            yield f"deorbit_perigee_km must be a number >= 0, got {self.deorbit_perigee_km!r}"
+        if self.deorbit_perigee_km is None:
+            yield "deorbit_perigee_km is missing (None): give a number >= 0 [km]"
+        elif not (_is_real(self.deorbit_perigee_km) and 0 <= self.deorbit_perigee_km < math.inf):
+            yield ("deorbit_perigee_km must be a finite number >= 0 [km], got "
+                   f"{self.deorbit_perigee_km!r}")  # fmt: skip
         both = sorted(set(self.must_include) & set(self.exclude))
         if both:
             yield f"debris both in must_include and exclude: {', '.join(both)}"
