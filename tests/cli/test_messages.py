@@ -2,11 +2,12 @@
 thousands of characters, the help naming every catalog format, no "others" when there are
 none."""
 
+import pytest
 from click.testing import CliRunner
 
 from sdc_cvx import Campaign
 from sdc_cvx.cli import main
-from sdc_cvx.errors import MissionError
+from sdc_cvx.errors import MissionError, ScenarioError
 
 
 def test_launch_days_past_ten_years_are_counted_not_listed():
@@ -34,3 +35,28 @@ def test_values_named_says_no_others_when_every_candidate_is_named():
     assert "others" not in values_named(18, 18, "values.csv")
     assert "every one of the 18 candidates" in values_named(18, 18, "values.csv")
     assert "(the other 15 are worth 0)" in values_named(3, 18, "values.csv")
+
+
+def test_a_sweep_of_a_scenario_file_says_run_it(tmp_path):
+    """``sweep examples/paper.toml`` said "unknown study key 'catalog'" three times."""
+    from sdc_cvx.study.study import load_study
+
+    path = tmp_path / "plain.toml"
+    path.write_text("[catalog]\n[mission]\nn = 3\n", encoding="utf-8")
+    with pytest.raises(ScenarioError) as err:
+        load_study(path)
+    text = str(err.value)
+    assert "a scenario file (its tables: catalog, mission), not a study" in text
+    assert f"python -m sdc_cvx run {path} runs it" in text and "unknown study key" not in text
+
+
+def test_a_grid_value_given_twice_is_said_so(tmp_path):
+    """"scenario 'n=3' is the same scenario as 'n=3'"."""
+    from sdc_cvx.study.study import load_study
+
+    path = tmp_path / "study.toml"
+    path.write_text('[grid]\n"mission.n" = [3, 4, 3]\n', encoding="utf-8")
+    with pytest.raises(ScenarioError) as err:
+        load_study(path)
+    assert "scenario 'n=3' is given twice ([grid] or [[cases]]" in str(err.value)
+    assert "same scenario as" not in str(err.value)
