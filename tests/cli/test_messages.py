@@ -60,3 +60,12 @@ def test_a_grid_value_given_twice_is_said_so(tmp_path):
         load_study(path)
     assert "scenario 'n=3' is given twice ([grid] or [[cases]]" in str(err.value)
     assert "same scenario as" not in str(err.value)
+
+
+def test_the_search_share_of_a_time_limit_reads_as_a_bound(tmp_path):
+    """"The search gets 117.4 s of the 120 s limit" read as how long the search takes."""
+    result = CliRunner().invoke(main, ["run", "--n", "3", "--time-limit", "60", "--out",
+                                       str(tmp_path / "out")])  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert "The search may run up to" in result.output
+    assert "it stops sooner once the plan is proven" in result.output
