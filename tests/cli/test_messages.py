@@ -69,3 +69,13 @@ def test_the_search_share_of_a_time_limit_reads_as_a_bound(tmp_path):
     assert result.exit_code == 0, result.output
     assert "The search may run up to" in result.output
     assert "it stops sooner once the plan is proven" in result.output
+
+
+def test_a_selection_pattern_matching_nothing_names_the_scenario_file(tmp_path):
+    """The scenario file whose ``[selection]`` held the pattern was not named."""
+    path = tmp_path / "sel.toml"
+    path.write_text('[selection]\nids = ["zzz*"]\n', encoding="utf-8")
+    result = CliRunner().invoke(main, ["run", str(path), "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert f"candidate selection ({path} [selection]" in result.output
+    assert "'zzz*' match no debris of the catalog (paper Table 5)" in result.output
