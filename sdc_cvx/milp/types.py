@@ -130,8 +130,9 @@ class SolverOptions:
             yield f"method must be one of {', '.join(METHODS)}, got {self.method!r}"
         if not (_is_real(self.gap) and 0 <= self.gap < 1):
             yield f"gap must be a number in [0, 1) (0.001 = 0.1 %), got {self.gap!r}"
-        if self.time_limit_s is not None and not (_is_real(self.time_limit_s)
-                                                  and self.time_limit_s > 0):  # fmt: skip
+        limit = self.time_limit_s  # inf, as before: no limit
+        if limit is not None and not (_is_real(limit) or limit == math.inf) or not (
+                limit is None or limit > 0):  # fmt: skip
             yield f"time_limit_s must be > 0 [s] (a number, or None), got {self.time_limit_s!r}"
         if self.mip_gap is not None and not (_is_real(self.mip_gap) and 0 <= self.mip_gap < 1):
             yield f"mip_gap must be in [0, 1) (a number, or None), got {self.mip_gap!r}"
