@@ -139,3 +139,12 @@ def test_a_mission_says_a_value_missing_or_not_finite(fields, said):
     with pytest.raises(MissionError) as err:
         Mission(**fields)
     assert_one_line(err, said)
+
+
+@pytest.mark.parametrize(("must_remove", "shown"), [([["1"]], "got ['1']"),
+                                                   (["2", 5.0], "got 5.0"), (None, "got None")])
+def test_a_campaign_refuses_must_remove_ids_that_are_not_ids(must_remove, shown):
+    """``must_remove=[["1"]]`` was taken as the id "['1']" (no catalog has it)."""
+    with pytest.raises(MissionError) as err:
+        Campaign.of([0.0], must_remove=must_remove)
+    assert_one_line(err, "must_remove must be debris ids (strings or integers)", shown)

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import MissionError, listing
-from .mission import MAX_TMAX_DAYS, Mission, _ids_text
+from .mission import MAX_TMAX_DAYS, Mission, _ids_text, _is_id, _is_sequence
 from .vehicle import dv_ceiling_mps
 
 DEFAULT_PERIOD_DAYS = 365.25
@@ -106,8 +106,15 @@ class Campaign:
                                f"{self.launch_days!r} (a string)")  # fmt: skip
         if isinstance(self.launch_days, numbers.Real):
             object.__setattr__(self, "launch_days", (self.launch_days,))
-        if isinstance(self.must_remove, str):  # one id, as Mission's must_include takes it
+        if _is_id(self.must_remove):  # one id, as Mission's must_include takes it
             object.__setattr__(self, "must_remove", (self.must_remove,))
+        if _is_sequence(self.must_remove):  # a generator is read once
+            object.__setattr__(self, "must_remove", tuple(self.must_remove))
+        if not _is_sequence(self.must_remove) or not all(map(_is_id, self.must_remove)):
+            wrong = ([k for k in self.must_remove if not _is_id(k)]
+                     if _is_sequence(self.must_remove) else [self.must_remove])  # fmt: skip
+            raise MissionError(f"invalid campaign: must_remove must be debris ids (strings or "
+                               f"integers) or one id, got {listing(map(repr, wrong))}")  # fmt: skip
         object.__setattr__(self, "launch_days", tuple(self.launch_days))
         object.__setattr__(self, "missions", tuple(self.missions))
         object.__setattr__(self, "must_remove", tuple(str(k) for k in self.must_remove))
