@@ -2,6 +2,8 @@
 
 * input errors (also :class:`ValueError`): :class:`CatalogError`, :class:`MissionError`,
   :class:`ScenarioError` - something the user gave is wrong; nothing was solved;
+  :class:`OutputError` and :class:`FolderError` (also a :class:`FileExistsError`) - what
+  a save was asked to write, or where, is refused; nothing was written;
 * planning errors (also :class:`RuntimeError`): :class:`MissionInfeasible`,
   :class:`SolverFailure` - the inputs are valid but no plan came out;
 * :class:`SweepError` (also :class:`RuntimeError`) - a parameter study cannot run in the
@@ -95,6 +97,17 @@ class ScenarioError(InputError):
     def collect(cls, where: str, problems) -> ScenarioError:
         """One error for all ``problems`` found in ``where`` (a file name, "overrides")."""
         return cls(f"{where}: " + "; ".join(problems), problems)
+
+
+class OutputError(InputError):
+    """What a save was asked to write, or where, is refused: a folder that is not a path,
+    a figure format, a ``scenario_toml`` that is not text (nothing was written)."""
+
+
+class FolderError(OutputError, FileExistsError):
+    """A folder cannot take the results: a file, a folder holding files of the user's,
+    the current folder, a name too long, a place that refuses new files (nothing was
+    written).  Also a :class:`FileExistsError`, what these refusals were before."""
 
 
 # --------------------------------------------------------------------- planning

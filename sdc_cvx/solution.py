@@ -24,6 +24,7 @@ import pandas as pd
 
 from .inputs.catalog import Catalog
 from .inputs.mission import Mission
+from .report.out_folder import checked_save
 from .report.run_folder import save_solution
 
 
@@ -376,9 +377,44 @@ class Solution:
         figures in each of ``formats`` and, if given, ``scenario.toml``; the whole folder
         is written aside and swapped in at once (an earlier run folder there is replaced,
         any other non-empty folder refused: see :mod:`sdc_cvx.report.run_folder`).
-        Returns the paths written.
+        ``formats``: ``"png"``, ``"svg"``, ``"pdf"`` or a sequence of them (``()``: no
+        figures).  Returns the paths written.
+
+        Raises
+        ------
+        OutputError
+            ``folder`` is not a path, ``scenario_toml`` not text, a format unknown.
+        FolderError
+            ``folder`` cannot take the run folder (a file, a folder of the user's, the
+            current folder, a name too long, a place that refuses new files).
+        OSError
+            The system refused a write (a full disk); nothing is left behind.
         """
-        return save_solution(self, folder, formats=tuple(formats), scenario_toml=scenario_toml)
+        folder, formats = checked_save("Solution.save", folder, formats,
+                                       {"scenario_toml": scenario_toml})  # fmt: skip
+        return save_solution(self, folder, formats=formats, scenario_toml=scenario_toml)
+
+    @classmethod
+    def load(cls, folder) -> Solution:
+        """The solution a run folder holds (``solution.json``, written by :meth:`save`,
+        ``python -m sdc_cvx run --out`` or a campaign's mission folder), for a notebook.
+
+        Path, legs, totals, status, mission, history and notes are those saved (a
+        ``save`` of the loaded solution writes the same ``solution.json``).  Its
+        ``catalog`` holds the path's debris as planned (``solution.json``'s ``debris``,
+        at day 0) and no other candidate: the figures draw those; to fly the plan
+        against the catalog file, ``python -m sdc_cvx fly FOLDER``
+        (:meth:`sdc_cvx.flight.Flight.load` reopens its flight).
+
+        Raises
+        ------
+        SolutionFileError
+            (an ``InputError``) no ``solution.json`` in ``folder``, or one that is not
+            what ``save`` writes: the message names the file and the field.
+        """
+        from .flight.solution_file import read_solution  # pandas only; flight's reader
+
+        return read_solution(folder, cls, Leg, IterationRecord, RunStatus)
 
     def plot(self) -> dict:
         """The run folder's four figures (matplotlib ``Figure`` by name: ``orbits``,

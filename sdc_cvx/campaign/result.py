@@ -268,10 +268,23 @@ class CampaignSolution:
 
     def save(self, folder, *, formats=("png",), scenario_toml: str | None = None,
              log: str | None = None) -> list:  # fmt: skip
-        """Write the campaign folder (see :func:`sdc_cvx.report.campaign_folder.write_campaign`)."""
-        from ..report.campaign_folder import write_campaign
+        """Write the campaign folder (see :func:`sdc_cvx.report.campaign_folder.write_campaign`).
 
-        return write_campaign(folder, self, formats=tuple(formats), scenario_toml=scenario_toml,
+        Its arguments are checked first as :meth:`Solution.save`'s are (``OutputError``,
+        ``FolderError``: one line, nothing written).
+        """
+        from ..report.campaign_folder import (
+            CAMPAIGN_FOLDER_FILES,
+            CAMPAIGN_FOLDER_MARKERS,
+            KIND,
+            write_campaign,
+        )
+        from ..report.out_folder import checked_save
+
+        folder, formats = checked_save("CampaignSolution.save", folder, formats,
+                                       {"scenario_toml": scenario_toml, "log": log},
+                                       CAMPAIGN_FOLDER_MARKERS, CAMPAIGN_FOLDER_FILES, KIND)
+        return write_campaign(folder, self, formats=formats, scenario_toml=scenario_toml,
                               log=log)  # fmt: skip
 
     def plot(self) -> dict:

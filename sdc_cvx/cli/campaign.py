@@ -142,9 +142,8 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
              "needs each one's mass [kg]; add them, or filter those out")  # fmt: skip
     if campaign.values and scenario.catalog_values != CSI:
         table = dict(campaign.values)
-        named = sum(str(k) in table for k in catalog.ids)
-        info(f"values: {named} of the {len(catalog)} candidates are named in "
-             f"{scenario.catalog_values} (the others are worth 0)")  # fmt: skip
+        info(values_named(sum(str(k) in table for k in catalog.ids), len(catalog),
+                          scenario.catalog_values))  # fmt: skip
     at_once = pricings_at_once(workers, scheduler, None, len(campaign))
     if (problem := size_problem(len(catalog), at_once)) is not None:
         fail(f"{catalog.source}: {problem}")
@@ -257,3 +256,12 @@ def _days_text(days) -> str:
     if len(days) > 8 and np.allclose(steps, steps[0]):
         return f"{days[0]:g} to {days[-1]:g}, every {steps[0]:g}"
     return _shortened([f"{d:g}" for d in days])
+
+
+def values_named(named: int, candidates: int, source) -> str:
+    """How many of the candidates the values file names, in words (``the others are worth
+    0`` only where there are others)."""
+    if named == candidates:
+        return f"values: every one of the {candidates} candidates is named in {source}"
+    return (f"values: {named} of the {candidates} candidates are named in {source} (the "
+            f"other {candidates - named} are worth 0)")

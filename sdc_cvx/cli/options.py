@@ -44,8 +44,8 @@ def catalog_options(command):
         "catalog_path",
         type=click.Path(dir_okay=False),
         default=None,
-        help="Debris catalog (CSV: id, a_km, e, inc_deg, raan_deg[, epoch]) "
-        "[scenario's, else the paper's Table 5].",
+        help="Debris catalog: CSV (id, a_km, e, inc_deg, raan_deg[, epoch]), TLE, OMM or "
+        "GTOC9 (--format) [scenario's, else the paper's Table 5].",
     )(command)
 
 

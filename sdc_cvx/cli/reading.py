@@ -96,8 +96,10 @@ def select_candidates(catalog: Catalog, scenario: Scenario, echo) -> tuple[Catal
         kept, report = selection.apply(catalog, strict=scenario.catalog_strict)
     except CatalogError as err:
         fail(str(err))
-    except ValueError as err:
-        fail(f"candidate selection: {err}")
+    except ValueError as err:  # a pattern matching nothing: where it was written, and what
+        where = ("" if scenario.source is None
+                 else f" ({scenario.source} [selection], or the filters given as options)")
+        fail(f"candidate selection{where}: {err} ({catalog.source})")
     invalid = report[report["checks"] == "invalid"]
     for reason in invalid["reason"]:
         click.echo(f"warning: dropped, not an orbit of this model: {reason}", err=True)

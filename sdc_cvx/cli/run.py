@@ -226,8 +226,9 @@ def run_command(scenario_file, catalog_path, catalog_format, start, raan_rates, 
         limit = solver.time_limit_s
         solver = dataclasses.replace(solver, time_limit_s=search_limit(
             limit, started, run_writing_s(len(catalog), mission.transfer, edges)))  # fmt: skip
-        header += (f"\nThe search gets {solver.time_limit_s:.1f} s of the {limit:g} s limit "
-                   "(the rest reads the catalog and writes the run folder).")  # fmt: skip
+        header += (f"\nThe search may run up to {solver.time_limit_s:.1f} s of the {limit:g} s "
+                   "limit: it stops sooner once the plan is proven (the rest reads the catalog "
+                   "and writes the run folder).")  # fmt: skip
     info(header)
     # the progress goes to OUT.log beside the run folder while the run lasts (a killed run
     # leaves it there, the next run into OUT replaces it), then into the folder as run.log;

@@ -36,10 +36,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..errors import FolderError, OutputError
 from ..inputs.vehicle import PropellantBudget, propellant_budget
 from ..physics.orbits import SECONDS_PER_DAY
 from ..report.atomic import write_atomic
-from ..report.out_folder import FLIGHT_FILES, FLIGHT_FOLDER, is_ours
+from ..report.out_folder import FLIGHT_FILES, FLIGHT_FOLDER, is_ours, writable_problem
 from .oem import write_oem
 from .plan import FlightError, FlightPlan, miss_text
 from .propagation import ForceModel
@@ -292,14 +293,46 @@ class Flight:
                 "fits": burnt.fits}  # fmt: skip
 
     # -- files ------------------------------------------------------------------------
+    @classmethod
+    def load(cls, folder) -> Flight:
+        """The flight :meth:`save` wrote in ``folder`` (a run folder flown, or its
+        ``flight/``), for a notebook: tables, totals, status and trajectory as saved, the
+        plan the run folder's ``solution.json`` (:meth:`sdc_cvx.Solution.load`).
+
+        Raises
+        ------
+        FlightError
+            No flight there, or a file that is not what ``save`` writes.
+        """
+        from .reopen import read_flight
+
+        return read_flight(folder, cls, Maneuver, Rendezvous)
+
     def save(self, run_folder) -> list[str]:
         """Write ``run_folder/flight/`` at once (aside, then swapped in; ``run_folder``
         made if need be); the paths written.
 
         An earlier ``flight/`` is replaced only when it holds nothing but the files a
         flight writes: a folder of the user's there is refused (:class:`FlightError`).
+
+        Raises
+        ------
+        FlightError
+            ``run_folder/flight/`` holds files of the user's.
+        OutputError
+            ``run_folder`` is not a path.
+        FolderError
+            Nothing can be written there (a file on the way, a name too long, a place
+            that refuses new files): checked before anything is written.
         """
+        if isinstance(run_folder, bytes) or not isinstance(run_folder, str | os.PathLike):
+            raise OutputError(f"Flight.save(run_folder): run_folder must be a path (a str or "
+                              f"os.PathLike), got {run_folder!r}")  # fmt: skip
         run_folder = Path(run_folder)
+        if run_folder.exists() and not run_folder.is_dir():
+            raise FolderError(f"Flight.save: {run_folder} is a file, not a (run) folder")
+        if (problem := writable_problem(run_folder, "flight folder")) is not None:
+            raise FolderError(f"Flight.save: {problem}")
         target = run_folder / FLIGHT_FOLDER
         if (problem := flight_folder_problem(run_folder)) is not None:
             raise FlightError(problem)

@@ -24,8 +24,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import MissionError
-from .mission import MAX_TMAX_DAYS, Mission, _ids_text
+from ..errors import MissionError, listing
+from .mission import MAX_TMAX_DAYS, Mission, _ids_text, _is_id, _is_sequence
 from .values import MAX_VALUE, RESCALE
 from .vehicle import dv_ceiling_mps
 
@@ -102,10 +102,20 @@ class Campaign:
     """The budgets are the vehicles' tanks' ΔV ceilings, not given."""
 
     def __post_init__(self):
+        if isinstance(self.launch_days, str):  # said, not split into its characters
+            raise MissionError(f"invalid campaign: launch_days must be numbers [days], got "
+                               f"{self.launch_days!r} (a string)")  # fmt: skip
         if isinstance(self.launch_days, numbers.Real):
             object.__setattr__(self, "launch_days", (self.launch_days,))
-        if isinstance(self.must_remove, str):  # one id, as Mission's must_include takes it
+        if _is_id(self.must_remove):  # one id, as Mission's must_include takes it
             object.__setattr__(self, "must_remove", (self.must_remove,))
+        if _is_sequence(self.must_remove):  # a generator is read once
+            object.__setattr__(self, "must_remove", tuple(self.must_remove))
+        if not _is_sequence(self.must_remove) or not all(map(_is_id, self.must_remove)):
+            wrong = ([k for k in self.must_remove if not _is_id(k)]
+                     if _is_sequence(self.must_remove) else [self.must_remove])  # fmt: skip
+            raise MissionError(f"invalid campaign: must_remove must be debris ids (strings or "
+                               f"integers) or one id, got {listing(map(repr, wrong))}")  # fmt: skip
         object.__setattr__(self, "launch_days", tuple(self.launch_days))
         object.__setattr__(self, "missions", tuple(self.missions))
         object.__setattr__(self, "must_remove", tuple(str(k) for k in self.must_remove))
@@ -134,13 +144,15 @@ class Campaign:
             return
         bad = [d for d in days if not _is_real(d) or not 0 <= d <= MAX_LAUNCH_DAY]
         if bad:
+            given = (f"; {len(bad)} of the {len(days)} given are not: " if len(bad) > 1
+                     else ", got ")  # a count, not a line of thousands of characters
             yield (
                 f"launch_days must be numbers in [0, {MAX_LAUNCH_DAY:g}] days (10 years: "
-                f"the model leaves out drag and decay), got {list(bad)}"
+                f"the model leaves out drag and decay){given}{listing(bad)}"
             )
             return
         if any(b <= a for a, b in zip(days[:-1], days[1:], strict=True)):
-            yield f"launch_days must increase strictly, got {list(days)}"
+            yield f"launch_days must increase strictly, got {listing(days)}"
         if len(self.missions) != len(days):
             yield f"{len(days)} launch days but {len(self.missions)} missions"
         for k, mission in enumerate(self.missions, start=1):
@@ -278,9 +290,14 @@ class Campaign:
         value_options
             ``remove_all``, ``objective``, ``dv_budget_mps``, ``values`` (see the class).
         """
+        for name, value in (("launch_days", launch_days), ("n", n), ("tmax_days", tmax_days)):
+            if isinstance(value, str):  # said, not split into its characters
+                raise MissionError(f"invalid campaign: {name} must be a number or a sequence "
+                                   f"of numbers, got {value!r} (a string)")  # fmt: skip
         mission = Mission() if mission is None else mission
         days = (launch_days,) if isinstance(launch_days, numbers.Real) else tuple(launch_days)
-        if isinstance(n, Sequence) and any(isinstance(k, Sequence) for k in n):
+        if isinstance(n, Sequence) and any(isinstance(k, Sequence) and not isinstance(k, str)
+                                           for k in n):  # fmt: skip
             ranges = [tuple(k) if isinstance(k, Sequence) else (k, k) for k in n]
             if any(len(pair) != 2 for pair in ranges):
                 raise MissionError(f"invalid campaign: n ranges must be [n_min, n_max] pairs, "

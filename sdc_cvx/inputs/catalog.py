@@ -34,6 +34,8 @@ from __future__ import annotations
 
 import dataclasses
 import io
+import math
+import numbers
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -340,7 +342,20 @@ class Catalog:
         Catalog
             Same rows; ``raan_deg`` at the new date, ``start`` moved by ``days`` (None
             stays None).
+
+        Raises
+        ------
+        CatalogError
+            ``days`` is not a finite number within :data:`MAX_PROPAGATION_DAYS` (10
+            years, as an epoch from the start), or ``j2`` is not a number > 0.
         """
+        if not (_is_real(days) and abs(days) <= MAX_PROPAGATION_DAYS):
+            raise CatalogError(f"{self.source}: Catalog.advanced(days): days must be a number "
+                               f"in [-{MAX_PROPAGATION_DAYS:g}, {MAX_PROPAGATION_DAYS:g}] "
+                               f"[days], got {days!r}")  # fmt: skip
+        if not (_is_real(j2) and j2 > 0):
+            raise CatalogError(f"{self.source}: Catalog.advanced(j2=...): j2 must be a number "
+                               f"> 0, got {j2!r}")  # fmt: skip
         if days == 0:
             return self
         frame = self.frame.copy()
@@ -406,15 +421,25 @@ class Catalog:
 
         Parameters
         ----------
-        ids : iterable of str, or str
-            Debris ids to keep; non-string ids are compared as ``str(id)``.
+        ids : iterable of str or int, or one str or int
+            Debris ids to keep; integer ids are compared as ``str(id)`` (``subset(3)`` is
+            ``subset(["3"])``).
 
         Raises
         ------
         CatalogError
-            An id is not in the catalog, or no id is given.
+            An id is not in the catalog, is neither a string nor an integer, or no id is
+            given.
         """
-        wanted = [ids] if isinstance(ids, str) else [str(value) for value in ids]
+        one = _is_id(ids)
+        listed = [ids] if one else list(ids) if isinstance(ids, Iterable) else None
+        wrong = [] if listed is None else [k for k in listed if not _is_id(k)]
+        if listed is None or wrong:
+            shown = repr(ids) if listed is None else listing(map(repr, wrong))
+            raise CatalogError(f"{self.source}: Catalog.subset(ids): ids must be debris ids "
+                               "(strings or integers) or a sequence of them, got "
+                               f"{shown}")  # fmt: skip
+        wanted = [str(value) for value in listed]
         known = self.ids
         unknown = [value for value in dict.fromkeys(wanted) if value not in known]
         if unknown:
@@ -426,3 +451,14 @@ class Catalog:
         keep = self.frame["id"].isin(set(wanted)).to_numpy()
         frame = self.frame.loc[keep].reset_index(drop=True)
         return dataclasses.replace(self, frame=frame, invalid=None)
+
+
+def _is_real(value) -> bool:
+    """A finite real number (not a bool, not a string)."""
+    return (isinstance(value, numbers.Real) and not isinstance(value, bool)
+            and math.isfinite(value))  # fmt: skip
+
+
+def _is_id(value) -> bool:
+    """A debris id as the API takes one: a string, or an integer (``3`` is ``"3"``)."""
+    return isinstance(value, str | numbers.Integral) and not isinstance(value, bool)

@@ -16,7 +16,9 @@ References
 from __future__ import annotations
 
 import dataclasses
+import math
 import numbers
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ..errors import MissionError
@@ -141,19 +143,43 @@ class Mission:
     def __post_init__(self):
         if isinstance(self.vehicle, dict):
             object.__setattr__(self, "vehicle", _vehicle_of(self.vehicle))
-        object.__setattr__(self, "drift_altitude_km", tuple(self.drift_altitude_km))
+        if _is_sequence(self.drift_altitude_km):  # a string or a number is said, not split
+            object.__setattr__(self, "drift_altitude_km", tuple(self.drift_altitude_km))
+        problems = list(self._id_problems())
         for name in ("must_include", "exclude"):
             value = getattr(self, name)
-            if isinstance(value, str | numbers.Integral):  # one id, not its characters
+            if _is_id(value):  # one id, not its characters
                 value = (value,)
-            object.__setattr__(self, name, tuple(str(k) for k in value))
-        if self.first is not None:
+            if _is_sequence(value) and all(_is_id(k) for k in value):
+                object.__setattr__(self, name, tuple(str(k) for k in value))
+        if _is_id(self.first):
             object.__setattr__(self, "first", str(self.first))
-        if self.injection is not None:
+        if _is_sequence(self.injection):
             object.__setattr__(self, "injection", tuple(self.injection))
+        if problems:  # ids of the wrong type: the checks below compare ids as strings
+            raise MissionError("invalid mission: " + "; ".join(problems))
         problems = list(self._problems())
         if problems:
             raise MissionError("invalid mission: " + "; ".join(problems))
+
+    def _id_problems(self):
+        """Debris ids that are not ids: a catalog's ids are strings, an integer is taken
+        for its string (``5`` is ``"5"``), anything else (``5.0``, a list for ``first``)
+        would never match one."""
+        for name in ("must_include", "exclude"):
+            value = getattr(self, name)
+            if _is_id(value):
+                continue
+            if not _is_sequence(value):
+                yield (f"{name} must be debris ids (strings or integers) or one id, got "
+                       f"{value!r}")  # fmt: skip
+            elif wrong := [k for k in value if not _is_id(k)]:
+                yield (f"{name} must be debris ids (strings or integers), got "
+                       f"{', '.join(map(repr, wrong[:5]))}{' ...' if len(wrong) > 5 else ''}")
+        if self.first is not None and not _is_id(self.first):
+            several = "; must_include takes several" if _is_sequence(self.first) else ""
+            yield (f"first must be one debris id (a string or an integer), got "
+                   f"{self.first!r}{several}")  # fmt: skip
 
     def _problems(self):
         if isinstance(self.n, bool) or not isinstance(self.n, numbers.Integral):
@@ -164,7 +190,15 @@ class Mission:
                    "operations_dv_mps", "min_transfer_days")  # fmt: skip
         wrong_type = {name for name in numeric if not _is_real(getattr(self, name))}
         for name in sorted(wrong_type):
-            yield f"{name} must be a number, got {getattr(self, name)!r}"
+            value = getattr(self, name)
+            yield (f"{name} is missing (None): give a number" if value is None
+                   else f"{name} must be a number, got {value!r}")  # fmt: skip
+        infinite = {name for name in numeric if name not in wrong_type
+                    and not math.isfinite(getattr(self, name))
+                    and not (name == "dv_max_mps" and getattr(self, name) > 0)}  # inf: no cap
+        for name in sorted(infinite):
+            yield f"{name} is not finite ({getattr(self, name)!r}): give a finite number"
+        wrong_type |= infinite
         for name in ("tmax_days", "preopt_days", "dv_max_mps", "j2"):
             if name not in wrong_type and not getattr(self, name) > 0:
                 yield f"{name} must be > 0, got {getattr(self, name)!r}"
@@ -186,7 +220,11 @@ class Mission:
             return
         yield from self._option_problems()
         bounds = self.drift_altitude_km
-        if len(bounds) != 2:
+        if not isinstance(bounds, tuple):  # a string, or one number: a band has two ends
+            what = "a string" if isinstance(bounds, str) else "not a pair"
+            yield (f"drift_altitude_km must be (low, high) [km], two numbers such as "
+                   f"(400, 1200), got {bounds!r} ({what})")  # fmt: skip
+        elif len(bounds) != 2:
             yield f"drift_altitude_km must be (low, high), got {bounds!r}"
         elif not all(_is_real(b) for b in bounds):
             yield f"drift_altitude_km must be two numbers (low, high), got {bounds!r}"
@@ -331,8 +369,11 @@ class Mission:
         yield from self._vehicle_problems()
         if self.deorbit_by not in ("kit", "vehicle"):
             yield f"deorbit_by must be 'kit' or 'vehicle', got {self.deorbit_by!r}"
-        if not (_is_real(self.deorbit_perigee_km) and self.deorbit_perigee_km >= 0):
-            yield f"deorbit_perigee_km must be a number >= 0, got {self.deorbit_perigee_km!r}"
+        if self.deorbit_perigee_km is None:
+            yield "deorbit_perigee_km is missing (None): give a number >= 0 [km]"
+        elif not (_is_real(self.deorbit_perigee_km) and 0 <= self.deorbit_perigee_km < math.inf):
+            yield ("deorbit_perigee_km must be a finite number >= 0 [km], got "
+                   f"{self.deorbit_perigee_km!r}")  # fmt: skip
         both = sorted(set(self.must_include) & set(self.exclude))
         if both:
             yield f"debris both in must_include and exclude: {', '.join(both)}"
@@ -347,7 +388,11 @@ class Mission:
         if self.injection is not None:
             if self.first is not None:
                 yield "first and injection cannot both be set: the injection orbit is the start"
-            if len(self.injection) != 4 or not all(_is_real(v) for v in self.injection):
+            if not isinstance(self.injection, tuple):  # a string or a number, not split
+                what = "a string" if isinstance(self.injection, str) else "not four numbers"
+                yield (f"injection must be (a_km, e, inc_deg, raan_deg), four numbers, got "
+                       f"{self.injection!r} ({what})")  # fmt: skip
+            elif len(self.injection) != 4 or not all(_is_real(v) for v in self.injection):
                 yield f"injection must be (a_km, e, inc_deg, raan_deg), got {self.injection!r}"
             else:
                 a_km, e, inc, _ = self.injection
@@ -427,6 +472,17 @@ def _vehicle_of(table: dict) -> Vehicle:
 
 def _is_real(value) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _is_id(value) -> bool:
+    """A debris id as a mission takes one: a string, or an integer (``5`` is ``"5"``)."""
+    return isinstance(value, str | numbers.Integral) and not isinstance(value, bool)
+
+
+def _is_sequence(value) -> bool:
+    """A sequence of values (a tuple, a list, an array), not a string (never split into
+    its characters) nor a number."""
+    return isinstance(value, Iterable) and not isinstance(value, str | bytes | dict)
 
 
 def _ids_text(ids) -> str:

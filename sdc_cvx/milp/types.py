@@ -10,8 +10,13 @@ from __future__ import annotations
 
 import importlib.metadata
 import importlib.util
+import math
+import numbers
+from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import StrEnum
+
+from ..errors import MissionError
 
 DEFAULT_BACKEND = "HIGHS"
 BACKEND_MODULES = {"HIGHS": "highspy", "SCIP": "pyscipopt", "CBC": "cylp", "GLPK_MI": "cvxopt",
@@ -74,6 +79,13 @@ class SolverOptions:
         Let the backend presolve (None: its default).  The certified search turns it
         off for HiGHS: on its time-expanded relaxations HiGHS's presolve took 29 s
         where the solve alone took 0.9 s (``benchmarks/certify.py``).
+
+    Raises
+    ------
+    MissionError
+        An option out of its range or of the wrong type, or a backend name that is none
+        of :data:`MILP_BACKENDS` (a known backend not installed here is accepted: a
+        solve that needs a MILP then fails with :class:`~sdc_cvx.errors.SolverFailure`).
     """
 
     backend: str = DEFAULT_BACKEND
@@ -88,24 +100,63 @@ class SolverOptions:
     presolve: bool | None = None
 
     def __post_init__(self):
-        if self.method not in METHODS:
-            raise ValueError(f"method must be one of {METHODS}, got {self.method!r}")
-        if not (isinstance(self.gap, int | float) and 0 <= self.gap < 1):
-            raise ValueError(f"gap must be a number in [0, 1), got {self.gap!r}")
-        object.__setattr__(self, "backend", self.backend.upper())
         if isinstance(self.fallback, str):  # one backend, not its letters
             object.__setattr__(self, "fallback", (self.fallback,))
-        object.__setattr__(self, "fallback", tuple(str(b).upper() for b in self.fallback))
-        unknown = [b for b in self.fallback if b not in MILP_BACKENDS]
-        if unknown:
-            raise ValueError(f"fallback must name MILP backends, from {', '.join(MILP_BACKENDS)}; "
-                             f"got {', '.join(unknown)}")  # fmt: skip
-        if self.time_limit_s is not None and not self.time_limit_s > 0:
-            raise ValueError(f"time_limit_s must be > 0, got {self.time_limit_s!r}")
-        if self.mip_gap is not None and not 0 <= self.mip_gap < 1:
-            raise ValueError(f"mip_gap must be in [0, 1), got {self.mip_gap!r}")
-        if self.threads is not None and not (isinstance(self.threads, int) and self.threads >= 1):
-            raise ValueError(f"threads must be a positive integer, got {self.threads!r}")
+        names = [self.backend, *self.fallback] if _is_sequence(self.fallback) else [self.backend]
+        if all(isinstance(name, str) for name in names):
+            object.__setattr__(self, "backend", self.backend.upper())
+            if _is_sequence(self.fallback):
+                object.__setattr__(self, "fallback", tuple(b.upper() for b in self.fallback))
+        problems = list(self._problems())
+        if problems:
+            raise MissionError("invalid solver options: " + "; ".join(problems))
+
+    def _problems(self):
+        """Each rule the options break, in words (one :class:`MissionError` for all, as
+        :func:`~sdc_cvx.solve_campaign` raises for its own options)."""
+        known = ", ".join(MILP_BACKENDS)
+        if not isinstance(self.backend, str):
+            yield f"backend must be the name of a MILP backend ({known}), got {self.backend!r}"
+        elif self.backend not in MILP_BACKENDS:
+            yield f"backend must be one of {known}, got {self.backend!r}"
+        if not _is_sequence(self.fallback):
+            yield f"fallback must be a backend name or a sequence of them, got {self.fallback!r}"
+        else:
+            unknown = [b for b in self.fallback if not isinstance(b, str) or b not in MILP_BACKENDS]
+            if unknown:
+                yield (f"fallback must name MILP backends, from {known}; got "
+                       f"{', '.join(map(str, unknown))}")  # fmt: skip
+        if self.method not in METHODS:
+            yield f"method must be one of {', '.join(METHODS)}, got {self.method!r}"
+        if not (_is_real(self.gap) and 0 <= self.gap < 1):
+            yield f"gap must be a number in [0, 1) (0.001 = 0.1 %), got {self.gap!r}"
+        limit = self.time_limit_s  # inf, as before: no limit
+        if limit is not None and not (_is_real(limit) or limit == math.inf) or not (
+                limit is None or limit > 0):  # fmt: skip
+            yield f"time_limit_s must be > 0 [s] (a number, or None), got {self.time_limit_s!r}"
+        if self.mip_gap is not None and not (_is_real(self.mip_gap) and 0 <= self.mip_gap < 1):
+            yield f"mip_gap must be in [0, 1) (a number, or None), got {self.mip_gap!r}"
+        if self.threads is not None and not (_is_integer(self.threads) and self.threads >= 1):
+            yield f"threads must be a positive integer (or None), got {self.threads!r}"
+        if self.seed is not None and not _is_integer(self.seed):
+            yield f"seed must be an integer (or None), got {self.seed!r}"
+        for name in ("verbose", "presolve"):  # None: the default (off; the backend's)
+            if (value := getattr(self, name)) is not None and not isinstance(value, bool):
+                yield f"{name} must be True or False, got {value!r}"
+
+
+def _is_real(value) -> bool:
+    """A finite real number, not a bool."""
+    return (isinstance(value, numbers.Real) and not isinstance(value, bool)
+            and math.isfinite(value))  # fmt: skip
+
+
+def _is_integer(value) -> bool:
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
+def _is_sequence(value) -> bool:
+    return isinstance(value, Sequence) and not isinstance(value, str)
 
 
 @dataclass(frozen=True)

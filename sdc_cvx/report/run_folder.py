@@ -35,6 +35,7 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
+from ..errors import FolderError
 from ..inputs.catalog import Catalog
 from ..network.edges import EdgeTable
 from .atomic import file_mode, write_atomic
@@ -198,8 +199,8 @@ def write_run(
 
     Raises
     ------
-    FileExistsError
-        ``folder`` is refused (:func:`out_folder_problem`).
+    FolderError
+        ``folder`` is refused (:func:`out_folder_problem`); a :class:`FileExistsError`.
     OSError
         The folder cannot be written: the message names the folder and the reason, the
         ``errno`` is the system's (``ENOSPC`` for a full disk).  Nothing is left behind:
@@ -225,7 +226,7 @@ def write_staged(folder: Path | str, fill: Callable[[Path], list[str]], *,
     folder = real_folder(given)
     problem = out_folder_problem(given, markers, files, kind)
     if problem is not None:
-        raise FileExistsError(problem)
+        raise FolderError(problem)
     created = [p for p in (folder.parent, *folder.parent.parents) if not p.exists()]
     stage = None
     try:
@@ -233,7 +234,7 @@ def write_staged(folder: Path | str, fill: Callable[[Path], list[str]], *,
         with _parent_lock(folder):
             problem = out_folder_problem(given, markers, files, kind)  # no other save now
             if problem is not None:
-                raise FileExistsError(problem)
+                raise FolderError(problem)
             remove_stale_stages(folder)
             stage = Path(
                 tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}.", suffix=".partial")

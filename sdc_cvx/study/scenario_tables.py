@@ -383,7 +383,8 @@ def _relabel(table: str, message: str) -> list[str]:
     """
     keys = TABLE_KEYS[table]
     out = []
-    message = message.removeprefix("invalid mission: ").removeprefix("invalid vehicle: ")
+    for prefix in ("invalid mission: ", "invalid vehicle: ", "invalid solver options: "):
+        message = message.removeprefix(prefix)
     for problem in message.split("; "):
         first = problem.split(" ", 1)[0]
         if first in keys and problem.startswith(f"{first} must"):

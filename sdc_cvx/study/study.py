@@ -41,6 +41,7 @@ import pandas as pd
 
 from ..errors import ScenarioError
 from .scenario import Scenario
+from .scenario_tables import TABLES
 from .toml import read_toml, toml_line
 
 _STUDY_KEYS = ("base", "grid", "cases")
@@ -137,6 +138,10 @@ class Study:
         """
         base_dir = Path.cwd() if base_dir is None else Path(base_dir)
         problems: list[str] = []
+        if data and not set(data) & set(_STUDY_KEYS) and set(data) <= set(TABLES) | {"defaults"}:
+            raise ScenarioError.collect(where, [
+                f"a scenario file (its tables: {', '.join(data)}), not a study: python -m "
+                f"sdc_cvx run {where} runs it; a study has base, [grid] and/or [[cases]]"])
         for name in data:
             if name not in _STUDY_KEYS:
                 problems.append(
@@ -292,7 +297,10 @@ def _expand(base: Scenario, grid: dict, cases: tuple, where: str, *, source, tex
         content = _canonical(scenario.to_dict())
         twin = seen.get(content)
         if twin is not None:
-            duplicates.append(f"scenario {label!r} is the same scenario as {twin!r}")
+            duplicates.append(
+                f"scenario {label!r} is given twice ([grid] or [[cases]] name the same values "
+                "twice)" if label == twin else f"scenario {label!r} is the same scenario as "
+                f"{twin!r}")  # fmt: skip
             continue
         seen[content] = label
         scenarios.append(StudyScenario(key, label, effective, scenario))

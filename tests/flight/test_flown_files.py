@@ -365,3 +365,25 @@ def test_the_oem_read_back_has_one_segment_per_arc(flown):
 
 def test_flight_png_is_a_png(flown):
     assert (flown.flight / "flight.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_flight_load_reopens_the_folder_fly_wrote(flown):
+    """Issue 48, item 17: a notebook reopens a run folder ``fly`` wrote, its plan and its
+    flight, as the files say them."""
+    from sdc_cvx import Solution
+    from sdc_cvx.flight import Flight
+
+    solution = Solution.load(flown.folder)
+    assert list(solution.path) == flown.solution["path"]
+    assert solution.total_dv_mps == flown.solution["total_dv_mps"]
+    assert solution.catalog.start == pd.Timestamp(flown.solution["start"])
+    flight = Flight.load(flown.folder)
+    for key in ("status", "rates", "frame", "notes", "start"):
+        assert flight.to_dict()[key] == flown.summary[key], key
+    for key in ("plan_dv_mps", "flown_dv_mps", "phasing_dv_mps", "correction_dv_mps",
+                "worst_miss_km", "end_day"):  # fmt: skip
+        assert flight.to_dict()[key] == pytest.approx(flown.summary[key], rel=1e-8), key
+    np.testing.assert_allclose([m.dv_mps for m in flight.maneuvers], flown.maneuvers["dv_mps"],
+                               rtol=1e-9)  # fmt: skip
+    assert [r.target for r in flight.rendezvous] == list(flown.rendezvous["target"])
+    assert [r.in_time for r in flight.rendezvous] == list(flown.rendezvous["in_time"])

@@ -21,6 +21,7 @@ from sdc_cvx.milp.solve import solve_milp, solve_with_fallback
 from sdc_cvx.milp.types import SolverOptions, Status
 from sdc_cvx.planner.paper.linearize import Coefficients
 from sdc_cvx.planner.paper.model import PathModel
+from tests.milp import unchecked_options
 
 REL = 1e-6
 
@@ -186,7 +187,7 @@ def test_fallback_skips_unknown_and_uninstalled_backends():
     best, _ = instance.enumerate()
     model = instance.model()
     missing = [name for name in BACKENDS if name not in installed_backends()]
-    chain = [SolverOptions(backend="NO_SUCH_SOLVER")]
+    chain = [unchecked_options("NO_SUCH_SOLVER")]  # refused by SolverOptions
     chain += [SolverOptions(backend=missing[0])] if missing else []
     chain += [SolverOptions(backend="HIGHS")]
     report = solve_with_fallback(model.problem, chain)
@@ -262,7 +263,7 @@ def test_untrusted_infeasible_asks_the_next_backend(monkeypatch):
 
 def test_all_failing_returns_the_last_error():
     model = BY_NAME["N4-n3-binding"].model()
-    chain = [SolverOptions(backend="NOPE1"), SolverOptions(backend="NOPE2")]
+    chain = [unchecked_options("NOPE1"), unchecked_options("NOPE2")]
     report = solve_with_fallback(model.problem, chain)
     assert report.status == Status.ERROR and report.backend == "NOPE2"
     assert report.fallbacks == (

@@ -8,6 +8,7 @@ import cvxpy as cp
 import numpy as np
 import pytest
 
+from sdc_cvx.errors import MissionError
 from sdc_cvx.milp.backends import (
     BACKENDS,
     available_backends,
@@ -22,6 +23,7 @@ from sdc_cvx.milp.types import (
     Status,
     backend_importable,
 )
+from tests.milp import unchecked_options
 
 INSTALLED = installed_backends()
 EASY_OPTIMUM = 2034.0  # of easy_knapsack(), found by every backend without limits
@@ -296,7 +298,9 @@ def test_available_backends():
 
 def test_unknown_and_uninstalled_backends_are_errors():
     problem, _ = easy_knapsack()
-    report = solve_milp(problem, SolverOptions(backend="nope"))
+    with pytest.raises(MissionError, match="backend must be one of HIGHS, .*got 'NOPE'"):
+        SolverOptions(backend="nope")  # refused when made (issue 48, item 16)
+    report = solve_milp(problem, unchecked_options("NOPE"))  # the MILP layer's own check
     assert report.status == Status.ERROR and "unknown MILP backend 'NOPE'" in report.message
     missing = [name for name in MILP_BACKENDS if name not in INSTALLED]
     if missing:
@@ -338,6 +342,6 @@ def test_failed_check_is_an_error_and_leaves_no_point(monkeypatch):
 
 
 def test_an_unknown_fallback_backend_is_refused_when_the_options_are_made():
-    with pytest.raises(ValueError, match="fallback must name MILP backends.*got NOPE"):
+    with pytest.raises(MissionError, match="fallback must name MILP backends.*got NOPE"):
         SolverOptions(fallback=("NOPE",))
     assert SolverOptions(fallback="highs").fallback == ("HIGHS",)  # one name, not its letters

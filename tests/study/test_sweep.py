@@ -129,7 +129,7 @@ def test_invalid_value_names_the_dotted_key_and_the_case():
         ({"grid": {"mission.n": 4}}, "must be an array"),
         ({"grid": {"mission.n": []}}, "has no values"),
         ({"sweep": {"workers": 2}}, "unknown study key 'sweep'"),
-        ({"grid": {"mission.n": [4, 4]}}, "is the same scenario as"),
+        ({"grid": {"mission.n": [4, 4]}}, "'n=4' is given twice"),  # issue 48, item 20
     ],
 )
 def test_malformed_studies(data, words):
