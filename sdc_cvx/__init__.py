@@ -6,7 +6,7 @@ Data flow: :class:`Catalog` + :class:`Mission` -> :func:`preoptimize` (edge tabl
 The names below are imported when first used (a module-level ``__getattr__``), so
 ``import sdc_cvx`` loads neither CVXPY nor matplotlib nor the sweep machinery.  The
 subpackages follow the pipeline: ``physics``, ``inputs``, ``network``, ``milp``,
-``planner``, ``solution``, ``study``, ``report``, ``campaign`` (see the README's
+``planner``, ``solution``, ``study``, ``report``, ``campaign`` (see docs/development.md,
 "Layout").
 
 Equation, table and part numbers are those of Cerf's paper [1]_; the design

@@ -165,7 +165,7 @@ class Catalog:
             Mission start date (UTC when naive), within :data:`MAX_PROPAGATION_DAYS` of
             the epochs.  Default: the latest epoch, or None without epochs.
         on_invalid : {"raise", "set aside"}
-            Rows that are not orbits of this model (README, "Physical domain"): a
+            Rows that are not orbits of this model (docs/guide/catalogues.md, "Physical domain"): a
             problem (default), or set aside in ``Catalog.invalid``.
 
         Returns

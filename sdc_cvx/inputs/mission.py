@@ -39,7 +39,7 @@ INJECTION_MIN_PERIGEE_KM = 150.0
 (``inputs.catalog.MIN_PERIGEE_KM``; not imported: this module stays free of pandas)."""
 DRIFT_ALTITUDE_RANGE_KM = (150.0, 2000.0)
 """Where a drift altitude band may lie [km]: from the lowest perigee of a catalog orbit
-to the top of LEO (the catalog's limits, README "Physical domain")."""
+to the top of LEO (the catalog's limits, docs/guide/catalogues.md, "Physical domain")."""
 MAX_TMAX_DAYS = 3652.5
 """The longest mission planned [days]: 10 years (beyond, drag and the debris' decay,
 which the model leaves out, change the orbits more than the drift does)."""
