@@ -22,6 +22,7 @@ References
 from __future__ import annotations
 
 import importlib
+from importlib import metadata as _metadata
 from typing import TYPE_CHECKING
 
 _EXPORTS = {
@@ -68,7 +69,11 @@ __all__ = [
     "solve_campaign",
     "sweep",
 ]
-__version__ = "0.1.0"
+try:
+    __version__ = _metadata.version("sdc_cvx")
+    """The installed distribution's version (``pyproject.toml``), not a second copy of it."""
+except _metadata.PackageNotFoundError:  # a checkout on sys.path that was never installed
+    __version__ = "0+unknown"
 
 if TYPE_CHECKING:
     from .campaign.result import CampaignSolution
