@@ -22,7 +22,6 @@ References
 from __future__ import annotations
 
 import importlib
-from importlib import metadata as _metadata
 from typing import TYPE_CHECKING
 
 _EXPORTS = {
@@ -69,11 +68,6 @@ __all__ = [
     "solve_campaign",
     "sweep",
 ]
-try:
-    __version__ = _metadata.version("sdc_cvx")
-    """The installed distribution's version (``pyproject.toml``), not a second copy of it."""
-except _metadata.PackageNotFoundError:  # a checkout on sys.path that was never installed
-    __version__ = "0+unknown"
 
 if TYPE_CHECKING:
     from .campaign.result import CampaignSolution
@@ -93,7 +87,24 @@ if TYPE_CHECKING:
     from .study.runner import sweep
 
 
+def _version() -> str:
+    """The installed distribution's version (``pyproject.toml``), not a second copy of it.
+
+    Read when ``sdc_cvx.__version__`` is first asked for: ``importlib.metadata`` costs
+    20-40 ms of a bare ``import sdc_cvx``.
+    """
+    from importlib import metadata
+
+    try:
+        return metadata.version("sdc_cvx")
+    except metadata.PackageNotFoundError:  # a checkout on sys.path that was never installed
+        return "0+unknown"
+
+
 def __getattr__(name: str):
+    if name == "__version__":
+        globals()[name] = value = _version()
+        return value
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'sdc_cvx' has no attribute {name!r}")
@@ -103,4 +114,4 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return sorted([*globals(), *_EXPORTS])
+    return sorted({*globals(), *_EXPORTS, "__version__"})
