@@ -132,7 +132,7 @@ def _api_page() -> str:
     return "\n".join(lines)
 
 
-def _csv_table(path: Path, rel: str) -> list[str]:
+def _csv_table(rel: str) -> list[str]:
     return ["```{csv-table}", f":file: {rel}", ":header-rows: 1", "```", ""]
 
 
@@ -152,18 +152,21 @@ def _benchmarks_page() -> str:
         "## Notes on the results",
         "",
         "```{include} /../benchmarks/results/README.md",
-        ":heading-offset: 2",
+        ":start-line: 1",  # its title: this page's
+        ":heading-offset: 1",
         "```",
+        "",
+        "## The files",
         "",
     ]
     files = sorted(p for p in results.iterdir() if p.name != "README.md")
     for path in files:
         rel = f"/../benchmarks/results/{path.name}"
-        lines += [f"## `{path.name}`", ""]
+        lines += [f"### `{path.name}`", ""]
         if path.suffix == ".txt":
             lines += ["```{literalinclude} " + rel, ":language: text", "```", ""]
         elif path.suffix == ".csv":
-            lines += _csv_table(path, "../../benchmarks/results/" + path.name)
+            lines += _csv_table("../../benchmarks/results/" + path.name)
         elif path.suffix == ".png":
             lines += [f"```{{image}} {rel}", f":alt: {path.name}", "```", ""]
         else:
