@@ -113,3 +113,26 @@ def test_every_command_of_the_guide_names_what_exists(where, words):
             assert arg.split("=", 1)[0] in flags, f"{where}: `{name}` has no option {arg}"
         elif arg.startswith("examples/"):
             assert (REPO / arg).is_file(), f"{where}: no file {arg}"
+
+
+def test_the_api_page_has_every_public_name():
+    """The API page (written by docs/conf.py at each build) names every name of every
+    ``__all__`` of the package, and no package that declares one is left out."""
+    import ast
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("docs_conf", REPO / "docs" / "conf.py")
+    conf = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(conf)  # defines the page's writer; writes nothing
+    declaring = sorted(
+        ".".join(init.parent.relative_to(REPO).parts)
+        for init in (REPO / "sdc_cvx").rglob("__init__.py")
+        if any(isinstance(node, ast.Assign) and any(getattr(t, "id", "") == "__all__"
+                                                    for t in node.targets)
+               for node in ast.parse(init.read_text(encoding="utf-8")).body)
+    )  # fmt: skip
+    assert sorted(set(conf.API_PACKAGES)) == declaring
+    page = conf._api_page()
+    for package in conf.API_PACKAGES:
+        for name in importlib.import_module(package).__all__:
+            assert f"   {name}\n" in page or f":obj:`{name} <" in page, f"{package}.{name}"
