@@ -6,7 +6,7 @@ Data flow: :class:`Catalog` + :class:`Mission` -> :func:`preoptimize` (edge tabl
 The names below are imported when first used (a module-level ``__getattr__``), so
 ``import sdc_cvx`` loads neither CVXPY nor matplotlib nor the sweep machinery.  The
 subpackages follow the pipeline: ``physics``, ``inputs``, ``network``, ``milp``,
-``planner``, ``solution``, ``study``, ``report``, ``campaign`` (see the README's
+``planner``, ``solution``, ``study``, ``report``, ``campaign`` (see docs/development.md,
 "Layout").
 
 Equation, table and part numbers are those of Cerf's paper [1]_; the design
@@ -68,7 +68,6 @@ __all__ = [
     "solve_campaign",
     "sweep",
 ]
-__version__ = "0.1.0"
 
 if TYPE_CHECKING:
     from .campaign.result import CampaignSolution
@@ -88,7 +87,24 @@ if TYPE_CHECKING:
     from .study.runner import sweep
 
 
+def _version() -> str:
+    """The installed distribution's version (``pyproject.toml``), not a second copy of it.
+
+    Read when ``sdc_cvx.__version__`` is first asked for: ``importlib.metadata`` costs
+    20-40 ms of a bare ``import sdc_cvx``.
+    """
+    from importlib import metadata
+
+    try:
+        return metadata.version("sdc_cvx")
+    except metadata.PackageNotFoundError:  # a checkout on sys.path that was never installed
+        return "0+unknown"
+
+
 def __getattr__(name: str):
+    if name == "__version__":
+        globals()[name] = value = _version()
+        return value
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'sdc_cvx' has no attribute {name!r}")
@@ -98,4 +114,4 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return sorted([*globals(), *_EXPORTS])
+    return sorted({*globals(), *_EXPORTS, "__version__"})

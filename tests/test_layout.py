@@ -1,5 +1,5 @@
-"""The package layout: which layer may import which (README "Layout"), no import cycle, no
-module over :data:`MAX_LINES` lines, and light imports.
+"""The package layout: which layer may import which (docs/development.md, "Layout"), no import
+cycle, no module over :data:`MAX_LINES` lines, and light imports.
 
 Every module's imports are read with ``ast`` (module level and inside functions, so a
 lazy import counts too; ``if TYPE_CHECKING:`` blocks are skipped: they never run).
@@ -56,7 +56,7 @@ RULES = {
     },
     "__main__": {"cli"},
 }
-"""The import rules of the README's "Layout" section."""
+"""The import rules of docs/development.md (the README's "Layout" section before)."""
 
 THIRD_PARTY = {
     "physics": {"numpy"},
@@ -68,7 +68,7 @@ THIRD_PARTY = {
 CVXPY_LAYERS = {"milp", "planner", "campaign"}
 
 MAX_LINES = 500
-"""The longest a module of sdc_cvx may be (README "Layout")."""
+"""The longest a module of sdc_cvx may be (docs/development.md, the README's "Layout" before)."""
 
 
 def layer_of(module: str) -> str:
@@ -182,7 +182,7 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
 def test_imports_follow_the_layers(path):
     name = module_name(path)
     layer = layer_of(name)
-    assert layer in RULES, f"{name}: layer {layer!r} has no rule in the README's Layout"
+    assert layer in RULES, f"{name}: layer {layer!r} has no rule in docs/development.md's Layout"
     allowed = RULES[layer] | {layer, "errors"}
     ours = {m for m in imports(path) if m == "sdc_cvx" or m.startswith("sdc_cvx.")}
     wrong = sorted(m for m in ours if layer_of(m) not in allowed)

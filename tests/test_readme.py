@@ -30,3 +30,14 @@ def test_readme_python_snippet_runs_as_written(tmp_path):
     # n = 4 on Table 5: the certified answer, proven within its gap
     assert "5 -> 8 -> 10 -> 6" in result.stdout and ", optimal (gap" in result.stdout
     assert (tmp_path / "sdc_run_python" / "solution.json").exists()
+
+
+def test_readme_is_one_page_whose_links_lead_somewhere():
+    """Issue 49: README is one page (the guide holds the rest), and each file it links to
+    is in the repository (a page moved or renamed would leave a dead link)."""
+    text = (REPO / "README.md").read_text(encoding="utf-8")
+    assert len(text.splitlines()) <= 200
+    links = re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", text)
+    local = [link for link in links if "://" not in link]
+    assert len(local) >= 10  # the guide's map
+    assert [link for link in local if not (REPO / link).exists()] == []

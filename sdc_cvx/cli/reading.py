@@ -105,7 +105,8 @@ def select_candidates(catalog: Catalog, scenario: Scenario, echo) -> tuple[Catal
         click.echo(f"warning: dropped, not an orbit of this model: {reason}", err=True)
     if len(invalid):
         click.echo(f"warning: {len(invalid)} element set(s) in the selection dropped: not "
-                   "orbits of this model (README, 'Physical domain'); --strict refuses them",
+                   "orbits of this model (docs/guide/catalogues.md, 'Physical domain'); "
+                   "--strict refuses them",
                    err=True)  # fmt: skip
     line = selection_summary(kept, report)
     if len(kept) == 0:

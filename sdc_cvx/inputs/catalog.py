@@ -169,7 +169,7 @@ class Catalog:
             the median epoch (a wrong epoch far from the others is named in a
             :class:`~sdc_cvx.errors.CatalogWarning`, not taken), or None without epochs.
         on_invalid : {"raise", "set aside"}
-            Rows that are not orbits of this model (README, "Physical domain"): a
+            Rows that are not orbits of this model (docs/guide/catalogues.md, "Physical domain"): a
             problem (default), or set aside in ``Catalog.invalid``.
 
         Returns

@@ -338,7 +338,8 @@ def _check_a(value: float) -> str | None:
 
 
 def _check_domain(a_km: float, e: float) -> str | None:
-    """Whether an orbit is one the package can plan with (README, "Physical domain")."""
+    """Whether an orbit is one the package can plan with (docs/guide/catalogues.md,
+    "Physical domain")."""
     if a_km > MAX_A_KM:
         return (
             f"expected a semi-major axis of at most {MAX_A_KM:,.0f} km (an Earth orbit), "

@@ -44,7 +44,7 @@ INJECTION_MAX_A_KM = 100_000.0
 (``inputs.catalog.MAX_A_KM``): an Earth orbit; an ``a_km`` in metres is far above."""
 DRIFT_ALTITUDE_RANGE_KM = (150.0, 2000.0)
 """Where a drift altitude band may lie [km]: from the lowest perigee of a catalog orbit
-to the top of LEO (the catalog's limits, README "Physical domain")."""
+to the top of LEO (the catalog's limits, docs/guide/catalogues.md, "Physical domain")."""
 MAX_TMAX_DAYS = 3652.5
 """The longest mission planned [days]: 10 years (beyond, drag and the debris' decay,
 which the model leaves out, change the orbits more than the drift does)."""

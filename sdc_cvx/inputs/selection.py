@@ -14,7 +14,7 @@ not cover:
   km): the J2 drift strategy is a LEO strategy (the RAAN rate falls as a^-3.5: a
   drift at GEO would take centuries).  Together with the catalog's own checks (perigee
   altitude at least 150 km, a at most 100,000 km: refused when read) this is the
-  physical domain of the model (README, "Physical domain").
+  physical domain of the model (docs/guide/catalogues.md, "Physical domain").
 
 Every dropped debris is reported with its reasons, in words, in a table.
 
@@ -243,7 +243,8 @@ def select(
     if strict and problems:
         raise CatalogError.collect(catalog.source, [
             *problems, f"{catalog.source}: {len(problems)} element set(s) in the selection are "
-            "not orbits of this model (README, 'Physical domain'); narrow the selection, or "
+            "not orbits of this model (docs/guide/catalogues.md, 'Physical domain'); "
+            "narrow the selection, or "
             "leave out strict (--strict) to drop them with a warning"])  # fmt: skip
     dropped = np.array([bool(found) for found in reasons], dtype=bool)
     kept_frame = catalog.frame.loc[~dropped[:n_valid]].reset_index(drop=True)

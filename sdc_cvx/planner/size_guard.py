@@ -21,8 +21,8 @@ BASE_BYTES = 300 * 2**20
 USABLE_FRACTION = 0.8
 """Part of the available memory a run may plan to use."""
 FILTERS = ("narrow the candidates: --altitude-km, --inclination-deg, --max-eccentricity, "
-           "--type, --names, --ids (or [selection] in the scenario; README, 'A whole public "
-           "catalogue')")  # fmt: skip
+           "--type, --names, --ids (or [selection] in the scenario; "
+           "docs/guide/catalogues.md, 'A whole public catalogue')")  # fmt: skip
 
 
 def available_memory_bytes() -> int | None:

@@ -192,9 +192,9 @@ def read_catalog(path: str | os.PathLike, format: str | None = None, *, start=No
     start : str or datetime-like, optional
         Mission start date (UTC when naive); default the latest epoch.
     on_invalid : {"raise", "set aside"}
-        Element sets that are not orbits of this model (README, "Physical domain"):
-        problems (default), or set aside in ``Catalog.invalid``, for the candidate
-        selection to report those it keeps (:func:`sdc_cvx.inputs.selection.select`).
+        Element sets that are not orbits of this model (docs/guide/catalogues.md,
+        "Physical domain"): problems (default), or set aside in ``Catalog.invalid``, for the
+        candidate selection to report those it keeps (:func:`sdc_cvx.inputs.selection.select`).
 
     Raises
     ------

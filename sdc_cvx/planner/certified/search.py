@@ -281,7 +281,7 @@ def certify(orbits, nodes: CertifiedNodes, a_low: float, a_high: float, *,
     solver : SolverOptions
         MILP backend for the relaxation (its fallback chain is used).
     gap_rel : float
-        Stop when (plan - bound) <= max(gap_rel * |plan|, gap_abs_mps).
+        Stop when ``plan - bound <= max(gap_rel * abs(plan), gap_abs_mps)``.
     time_limit_s : float, optional
         Wall-clock limit of the whole search [s]; the best plan is then returned with its gap.
     seeds : sequence of sequence of int
