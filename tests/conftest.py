@@ -49,6 +49,21 @@ def shared_file(relative: str) -> Path:
     return path
 
 
+def pytest_collection_modifyitems(config, items):
+    """Keep on one worker the tests of a module that share a module-scoped fixture: under
+    ``-n 2`` (``--dist loadgroup``, pyproject.toml) each worker would otherwise compute
+    the fixture again (a flight or a planned run, tens of seconds each)."""
+    for item in items:
+        info = getattr(item, "_fixtureinfo", None)
+        if info is None:
+            continue
+        shared = any(definition.scope == "module"
+                     for definitions in info.name2fixturedefs.values()
+                     for definition in definitions)  # fmt: skip
+        if shared:
+            item.add_marker(pytest.mark.xdist_group(item.module.__name__))
+
+
 def pytest_runtest_setup(item):
     for marker in item.iter_markers("requires_shared_data"):
         if not SHARED_DATA.is_dir():

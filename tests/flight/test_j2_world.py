@@ -92,9 +92,17 @@ def world_and_plan():
     return world, solution
 
 
-def test_a_plan_flown_among_j2_debris_meets_each_one(world_and_plan):
+@pytest.fixture(scope="module")
+def flown(world_and_plan):
+    """The plan flown among the J2 debris with the measured rates (the default), once for
+    the tests that read it."""
     world, solution = world_and_plan
-    flight = fly(FlightPlan.from_solution(solution), ephemeris=world)
+    return fly(FlightPlan.from_solution(solution), ephemeris=world)
+
+
+def test_a_plan_flown_among_j2_debris_meets_each_one(world_and_plan, flown):
+    world, solution = world_and_plan
+    flight = flown
     assert len(flight.rendezvous) == 2
     for meeting in flight.rendezvous:
         assert meeting.miss_km < 1e-3 and meeting.miss_mps < 0.1, meeting  # 100 m, 0.1 m/s
@@ -108,27 +116,26 @@ def test_a_plan_flown_among_j2_debris_meets_each_one(world_and_plan):
     assert flight.within_tmax
 
 
-def test_first_order_rates_cost_trims_the_fitted_ones_save(world_and_plan):
+def test_first_order_rates_cost_trims_the_fitted_ones_save(world_and_plan, flown):
     """Guided on first-order rates, the vehicle drifts off the model's prediction for
     weeks: its trims and approaches cost tens of times those of the measured rates
     (measured 5.3 m/s against 0.10 m/s)."""
     world, solution = world_and_plan
-    plan = FlightPlan.from_solution(solution)
     spent = []
-    for rates in ("fitted", "model"):
-        flight = fly(plan, ephemeris=world, rates=rates)
+    for flight in (flown, fly(FlightPlan.from_solution(solution), ephemeris=world,
+                              rates="model")):  # fmt: skip
         assert all(meeting.miss_km < 1e-3 for meeting in flight.rendezvous)
         spent.append(sum(m.dv_mps for m in flight.maneuvers if m.kind in ("trim", "approach")))
     assert spent[1] > 10 * spent[0] > 0
 
 
-def test_a_flight_says_when_it_did_not_fly_as_planned(world_and_plan):
+def test_a_flight_says_when_it_did_not_fly_as_planned(world_and_plan, flown):
     """Found as a user: a flight with a leg not flown compared its ΔV with the whole plan
     (+14 % for 3 of 4 legs), and one that missed by 1 261 km said nothing; both exited 0."""
     import dataclasses
 
     world, solution = world_and_plan
-    flight = fly(FlightPlan.from_solution(solution), ephemeris=world)
+    flight = flown
     assert flight.status == "flown" and flight.warning() is None
     first = flight.rendezvous[0]
     short = dataclasses.replace(flight, rendezvous=(first,), notes=("leg 2 not flown",))
@@ -145,11 +152,10 @@ def test_a_flight_says_when_it_did_not_fly_as_planned(world_and_plan):
     assert missed.status == "missed" and "missed by 1261 km" in missed.warning()
 
 
-def test_a_flight_saved_where_no_run_folder_is_yet_makes_it(world_and_plan, tmp_path):
+def test_a_flight_saved_where_no_run_folder_is_yet_makes_it(flown, tmp_path):
     """Found as a user: ``solution.fly().save("run")`` before ``solution.save("run")``
     raised FileNotFoundError on its staging folder."""
-    world, solution = world_and_plan
-    flight = fly(FlightPlan.from_solution(solution), ephemeris=world)
+    flight = flown
     written = flight.save(tmp_path / "new" / "run")
     assert sorted(Path(p).name for p in written) == sorted(FLIGHT_FILES)
     assert all(Path(p).is_file() for p in written)
