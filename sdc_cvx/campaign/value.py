@@ -256,6 +256,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         if forced is not None:
             return forced
     upper, priced = plane.value, len(counts_of(launches, campaign))
+    proven_from = -np.inf  # the pool holds every mission of a campaign worth at least this
     # every mission within budget, if that ends in a share of the time (small programmes)
     columns, undecided, complete = enumerate_all(
         deadline=deadline if price is not None else _share(PLAIN_SHARE, deadline))
@@ -285,6 +286,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
             narrowed = {(k, n): how for (k, n), how in narrowed.items() if n >= fewest[k]}
             say(f"  to beat {best:g}: {len(excluded)} debris ruled out by their value, "
                 f"{len(narrowed)} of {len(counts_of(launches, campaign))} counts left")
+            proven_from = best
         columns, undecided, complete = enumerate_all(deadline=deadline, found=found,
                                                      narrowed=narrowed, exclude=excluded)
     if price is None:
@@ -345,7 +347,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                 else None, dv_mps=dv, pricings=priced,
                 dv_bound_mps=dv_bound if complete else None, status=status,
                 columns=len(columns), notes=tuple(notes), complete=complete,
-                pool=(columns, undecided, values))  # fmt: skip
+                pool=(columns, undecided, values), proven_from=proven_from)  # fmt: skip
 
 
 def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline, say, stop,
@@ -396,8 +398,8 @@ def _priced(columns: list, values: np.ndarray, price: float, launches: int, debr
 
 
 def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: int,
-                 debris: int, points: int, *, solver: SolverOptions,
-                 proven: bool = True) -> tuple[dict, ...]:  # fmt: skip
+                 debris: int, points: int, *, solver: SolverOptions, proven: bool = True,
+                 proven_from: float = -np.inf) -> tuple[dict, ...]:  # fmt: skip
     """Campaigns of value against ΔV, each the cheapest of at least a target value.
 
     The targets run evenly from the value of the cheapest campaign to the most value
@@ -405,7 +407,9 @@ def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: i
     is the same program over every path at its bound: no campaign of at least that value
     costs less (the ε-constraint method: every point is on the front, within the bound);
     None for every point unless ``proven`` (the enumeration of the missions within budget
-    was complete: else a mission it missed might make a campaign cheaper).
+    was complete: else a mission it missed might make a campaign cheaper), and None for a
+    target below ``proven_from`` (the narrowed enumeration holds every mission of a
+    campaign worth at least that value, not the missions of a cheaper, less valuable one).
     """
     everything = columns + undecided
     worth = _worth(columns, values)
@@ -420,8 +424,9 @@ def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: i
     for target in np.linspace(least, most, max(points, 2)):
         hold = target - VALUE_TOL * max(1.0, abs(target))
         plan = solve_ip(columns, launches, debris, solver=solver, at_least=(worth, hold))
-        floor = None if not proven else solve_ip(everything, launches, debris, solver=solver,
-                                                 costs=lows, at_least=(worth_all, hold))
+        covered = proven and target >= proven_from - VALUE_TOL * max(1.0, abs(proven_from))
+        floor = None if not covered else solve_ip(everything, launches, debris, solver=solver,
+                                                  costs=lows, at_least=(worth_all, hold))
         if plan is None or plan.chosen in seen:
             continue
         seen.add(plan.chosen)
@@ -447,8 +452,10 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     front = ()
     if pareto and found["plan"] is not None:
         columns, undecided, values = found["pool"]
+        proven_from = found.get("proven_from", -np.inf)
         front = pareto_front(columns, undecided, values, len(campaign), len(catalog), pareto,
-                             solver=solver, proven=found["complete"])  # fmt: skip
+                             solver=solver, proven=found["complete"],
+                             proven_from=proven_from)  # fmt: skip
         catalog_ids = catalog.ids
         front = tuple(row | {"missions": [[catalog_ids[i] for i in path if i < len(catalog_ids)]
                                           for path in row["missions"]]}
@@ -457,6 +464,10 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         if not found["complete"]:
             found["notes"] += ("the front's ΔV bounds are not proven (a limit stopped the "
                                "enumeration of the missions within budget)",)
+        elif any(row["dv_bound_mps"] is None for row in front):
+            found["notes"] += (f"the front's ΔV bounds of values below {proven_from:g} are not "
+                               "proven (the enumeration was narrowed to the missions of "
+                               f"campaigns worth at least {proven_from:g})",)
     if found["plan"] is None:
         why = found["notes"][0]
         raise SolverFailure(why if why.startswith("no campaign") else f"{why}: allow more time")
