@@ -56,6 +56,7 @@ from ..inputs.vehicle import propellant_budget
 from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from ..solution import OPTIMAL_GAP_MPS, RunStatus
+from .few import FEWEST_SEARCHED, price_counts, used_launches
 from .master import solve_ip
 from .plane_bound import campaign_plane_bound
 from .pricing import Column, Launch, Pricing, mission_solution
@@ -77,6 +78,9 @@ START_SHARE = 0.25
 FORCED_SHARE = 0.5
 """Share of the time left the min-ΔV campaign of the debris the plane-change bound forces
 may take (:func:`_forced`)."""
+TIE_MPS = 1e-7
+"""ΔV each debris adds when the least ΔV of the most value is chosen [m/s]: of equal ΔV, the
+fewest debris (a launch unused, not sent to a debris worth nothing at 0 m/s)."""
 PATH_GAP_REL = 1e-4
 """Relative tolerance of each enumerated path's schedule (undecided paths lie within it
 of their budget)."""
@@ -123,14 +127,13 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
                 break
             wave = [(j, m) for e, j, m in steps if e == extra
                     and (narrowed is None or (j, m) in narrowed)]  # fmt: skip
-            tasks = [(replace(launches[j], mission=launches[j].mission.replace(n=m)),
-                      dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
-                           time_limit_s=None if not np.isfinite(left) else left,
-                           exclude=tuple(int(i) for i in exclude),
-                           sent_at=time.time())  # a task waiting for a worker has less
+            tasks = [(j, m, dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
+                                 time_limit_s=None if not np.isfinite(left) else left,
+                                 exclude=tuple(int(i) for i in exclude),
+                                 sent_at=time.time())  # a task waiting for a worker has less
                       | _under(narrowed, j, m, float(campaign.dv_budget_mps[j])))
                      for j, m in wave]  # fmt: skip
-            done.update(zip(wave, run(tasks), strict=True) if tasks else ())
+            done.update(zip(wave, price_counts(run, launches, tasks), strict=True))
         if (k, n) not in done:  # narrowed away: proven to hold no mission that matters
             done[(k, n)] = Pricing(k, (), np.inf, np.inf, "optimal", 0.0)
         pricing = done[(k, n)]
@@ -209,6 +212,8 @@ def best_value(columns: list, values: np.ndarray, launches: int, debris: int, *,
         return None, -np.inf
     value = -most.value
     hold = value - VALUE_TOL * max(1.0, abs(value))
+    if costs is None:  # of equal ΔV, the fewest debris (TIE_MPS)
+        costs = np.array([c.dv_mps + TIE_MPS * len(c.debris) for c in columns])
     plan = solve_ip(columns, launches, debris, solver=solver, costs=costs,
                     at_least=(worth, hold))  # fmt: skip
     return plan, value
@@ -453,10 +458,9 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     if pareto and found["plan"] is not None:
         columns, undecided, values = found["pool"]
         proven_from = found.get("proven_from", -np.inf)
-        front = pareto_front(columns, undecided, values, len(campaign), len(catalog), pareto,
-                             solver=solver, proven=found["complete"],
-                             proven_from=proven_from)  # fmt: skip
-        catalog_ids = catalog.ids
+        front, catalog_ids = pareto_front(
+            columns, undecided, values, len(campaign), len(catalog), pareto, solver=solver,
+            proven=found["complete"], proven_from=proven_from), catalog.ids  # fmt: skip
         front = tuple(row | {"missions": [[catalog_ids[i] for i in path if i < len(catalog_ids)]
                                           for path in row["missions"]]}
                       for row in front)  # fmt: skip
@@ -472,10 +476,13 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         why = found["notes"][0]
         raise SolverFailure(why if why.startswith("no campaign") else f"{why}: allow more time")
     status = found["status"]
+    plan, campaign, unused = used_launches(found["plan"], campaign)  # n_min = 0: left out
+    found["notes"] += unused  # and a mission of one debris keeps its launch's Mission:
     sized = [replace(launch, mission=launch.mission.replace(n=len(c.debris)))
-             for launch, c in ((found["launches"][c.launch], c) for c in found["plan"])]
+             if len(c.debris) >= FEWEST_SEARCHED else launch
+             for launch, c in ((found["launches"][c.launch], c) for c in plan)]  # fmt: skip
     missions = tuple(mission_solution(launch, c, status, solver.backend)
-                     for launch, c in zip(sized, found["plan"], strict=True))  # fmt: skip
+                     for launch, c in zip(sized, plan, strict=True))  # fmt: skip
     status, notes = tank_status(missions, status, found["notes"])
     value, bound = (None if v is None else v + 0.0  # + 0.0: never "-0"
                     for v in (found["value"], found["value_bound"]))
