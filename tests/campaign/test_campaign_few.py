@@ -93,3 +93,17 @@ def test_a_min_dv_campaign_with_ranges_and_nothing_to_remove_is_told_it_takes_n_
             pytest.raises(MissionError):  # fmt: skip
         solve_campaign(MIXED.catalog(), Campaign.of([0.0, 100.0], n=[[2, 9]]), workers=1)
     assert len([w for w in warned if "n_min" in str(w.message)]) == 1  # once
+
+
+def test_a_mission_of_one_debris_is_not_flown(tmp_path):
+    """A mission of one debris has no leg: ``fly`` leaves it out of a campaign's flights
+    (flight/plan.run_folder_plans), and says so when no mission has a leg."""
+    import json
+
+    from sdc_cvx.flight.plan import FlightError, run_folder_plans
+
+    (tmp_path / "mission_01").mkdir()
+    (tmp_path / "campaign.json").write_text(json.dumps({"missions": [
+        {"launch_day": 0.0, "path": ["5"], "total_dv_mps": 0.0, "folder": "mission_01"}]}))
+    with pytest.raises(FlightError, match="every mission removes one debris"):
+        run_folder_plans(tmp_path)
