@@ -166,17 +166,17 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
 def tank_fits(launches: list[Launch]):
     """``fits(column)``: the propellant of the column's schedule (its legs' and its
     operations' ΔV, :func:`~sdc_cvx.inputs.vehicle.propellant_budget`, kits left at each
-    debris) fits its launch's tank."""
+    debris) fits its launch's tank; a launch unused (no debris) flies no vehicle."""
     operations = {}
 
     def fits(column: Column) -> bool:
         launch = launches[column.launch]
         if column.launch not in operations:
             operations[column.launch] = MissionNodes.of(launch.catalog, launch.mission).cost_mps
-        budget = propellant_budget(launch.mission.vehicle, column.schedule.dv_mps,
-                                   operations[column.launch][list(column.nodes)],
-                                   kit_at_start=launch.mission.injection is None)  # fmt: skip
-        return budget.fits
+        return not column.nodes or propellant_budget(
+            launch.mission.vehicle, column.schedule.dv_mps,
+            operations[column.launch][list(column.nodes)],
+            kit_at_start=launch.mission.injection is None).fits  # fmt: skip
 
     return fits
 

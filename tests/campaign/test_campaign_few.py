@@ -107,3 +107,18 @@ def test_a_mission_of_one_debris_is_not_flown(tmp_path):
         {"launch_day": 0.0, "path": ["5"], "total_dv_mps": 0.0, "folder": "mission_01"}]}))
     with pytest.raises(FlightError, match="every mission removes one debris"):
         run_folder_plans(tmp_path)
+
+
+def test_a_launch_left_unused_fits_any_tank():
+    """With a vehicle's tank (each mission must fit it), a launch of no debris flies no
+    vehicle: it fits (the propellant budget of no node is not asked for)."""
+    from sdc_cvx.inputs.vehicle import Vehicle
+
+    vehicle = Vehicle(dry_mass_kg=500.0, propellant_kg=20.0, isp_s=300.0, kit_mass_kg=20.0)
+    campaign = Campaign.of([0.0, 200.0], Mission(drift_inclination="free", vehicle=vehicle),
+                           n=[[0, 2]], tmax_days=[250.0, 150.0], objective="max-value",
+                           values={"S002": 5.0, "S006": 1.0})  # fmt: skip
+    sol = solve_campaign(MIXED.catalog(), campaign, workers=1)
+    # the two debris of any value, each the launch onto its orbit (0 m/s, no propellant)
+    assert sol.status == RunStatus.OPTIMAL and sol.value == 6.0 and sol.total_dv_mps == 0.0
+    assert sorted(m.path for m in sol.missions) == [("S002",), ("S006",)]
