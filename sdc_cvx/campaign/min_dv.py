@@ -322,7 +322,7 @@ class CampaignSearch:
         # (remove_all: every one), the missions' sizes add up to at least their number
         self.lagrangian = float(np.sum(self.alone_bounds))
         sizes: dict[int, dict[int, float]] = {}
-        for variant, result in zip(self.variants, results, strict=True):
+        for variant, result in zip(order, results, strict=True):
             sizes.setdefault(variant.index, {})[variant.mission.n] = result.lower_mps
         self.lower = max(self.lower, self.lagrangian, sizes_bound(sizes, len(self.must)))
         self.centre = uniform_centre(sizes, np.asarray(self.must, dtype=int),
