@@ -295,7 +295,7 @@ def test_launches_left_without_a_plan_by_the_time_limit_are_named_together(catal
     had found no mission in its share, and the error named that launch alone, as if it
     were the campaign's only problem.  Every launch without a plan is named, with the
     time spent, and nothing is claimed infeasible."""
-    from sdc_cvx.campaign.min_dv import FEWEST_WEIGHT, CampaignSearch
+    from sdc_cvx.campaign.min_dv import CampaignSearch
     from sdc_cvx.campaign.pricing import Column, Pricing
     from sdc_cvx.errors import SolverFailure
     from sdc_cvx.milp.types import SolverOptions
@@ -324,7 +324,7 @@ def test_the_column_generation_stops_where_the_gap_left_is_the_integer_gap(catal
     that gap above the bound, the rounds stop; not where the gap could be closed, nor
     while the box binds or the LP needs its artificial columns."""
     from sdc_cvx.campaign.master import MasterLP
-    from sdc_cvx.campaign.min_dv import FEWEST_WEIGHT, CampaignSearch
+    from sdc_cvx.campaign.min_dv import CampaignSearch
     from sdc_cvx.milp.types import SolverOptions
 
     def lp(value, boxed=0.0, artificial=0.0):
@@ -390,3 +390,17 @@ def test_a_pricing_that_starts_after_the_deadline_returns_at_once(catalog):
     clock = time.perf_counter()
     price(launch, time_limit_s=30.0, deadline_at=time.time() + 0.5)
     assert time.perf_counter() - clock < 5.0
+
+
+@pytest.mark.slow
+def test_the_header_says_the_search_may_run_up_to_its_share_of_the_limit(tmp_path):
+    """Found as a user (issue 48, item 20): 'The search gets 117.4 s of the 120 s limit'
+    read as how long the campaign would take; it stops sooner once proven."""
+    (tmp_path / "c.toml").write_text("[mission]\ntmax_days = 365.25\n[campaign]\n"
+                                     "launch_days = [0.0, 365.25]\nn = 2\n")  # fmt: skip
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "campaign", str(tmp_path / "c.toml"),
+                           "--time-limit", "120", "--out", str(tmp_path / "out")],
+                          capture_output=True, text=True, cwd=REPO, timeout=300)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "The search may run up to" in done.stderr and "of the 120 s limit: it stops " \
+        "sooner once the campaign is proven" in done.stderr, done.stderr  # fmt: skip
