@@ -56,6 +56,7 @@ from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from .dive import dive
 from .greedy import greedy_campaign, repair
+from .launch_bounds import shown_bound, sizes_bound
 from .master import solve_ip, solve_lp
 from .price_box import PriceCentre, uniform_centre
 from .pricing import Column, Launch, Pricing, best_of_counts, infeasible_launch
@@ -73,6 +74,9 @@ the pricing hard, as the first rounds after a dear campaign mended from greedy, 
 otherwise take all the time)."""
 ROUND_FLOOR_S = 10.0
 """Least time a pricing of a round has [s], whatever its share."""
+FEWEST_WEIGHT = 4.0
+"""Shares of the time of the launches alone that a launch's fewest debris has (the other
+counts of its range one each): its plan is the first campaign's."""
 MASTER_SHARE = 0.02
 """Share of the time left that a round's integer master may take (with a time limit):
 with a few thousand columns its MILP can take minutes (GTOC9-all: over 4 minutes at a
@@ -188,30 +192,38 @@ class CampaignSearch:
         self.say(f"  {step}: plan {plan}, {bound}, {len(self.pool)} columns, "
                  f"{self.pricings} pricings")  # fmt: skip
 
-    def price_all(self, tasks, *, share: bool = False, round_share: float | None = None,
+    def price_all(self, tasks, *, share: bool | list = False, round_share: float | None = None,
                   ) -> list[Pricing]:  # fmt: skip
         """Run the pricing ``tasks`` (launch, keyword arguments) where they run, each with
-        the schedules the pool knows of its launch's paths.  A task that waits for a
-        worker has that much less time; with ``share`` (the launches alone: without each
-        launch's plan there is no campaign) never less than its share of the time left;
-        with ``round_share``, its share of that part of the time left from when it starts
-        (a round of the column generation: its pricings stopped there still bring their
-        columns and a proven bound)."""
+        the schedules the pool knows of its launch's paths, none past the deadline.  A task
+        that waits for a worker has that much less time; with ``share`` (the launches
+        alone: without each launch's plan there is no campaign; True, or a weight per
+        task) its share of the time left (the first wave given all of it took 121 s of a
+        60 s limit: 27 counts of a range on 2 workers); with ``round_share``, its share
+        of that part of the time left from when it starts (a round of the column
+        generation: its pricings stopped there still bring their columns and a proven
+        bound)."""
         left = self.remaining()
         waves = -(-len(tasks) // max(self.at_once, 1))
-        least = left / waves if share and left is not None else 0.0
+        least = np.zeros(len(tasks))
+        if share is not False and left is not None:
+            weights = np.ones(len(tasks)) * np.asarray(share, dtype=float)
+            least = np.minimum(left * min(self.at_once, len(tasks)) * weights / weights.sum(),
+                               left)  # fmt: skip
         if round_share is not None and left is not None:
             # each pricing its share from when it starts, not from the round's start (the
             # last wave of 50 pricings on 2 workers had waited past it and proved nothing)
-            left = least = min(max(ROUND_FLOOR_S, round_share * left / waves), left / waves)
+            least[:] = min(max(ROUND_FLOOR_S, round_share * left / waves), left / waves)
+        at = None if left is None else time.time() + left
         known: dict[int, dict] = {}
         for column in self.pool.columns:
             known.setdefault(column.launch, {})[column.nodes] = column.schedule
-        out = self.run([(launch, dict(kwargs, solver=self.solver, time_limit_s=left,
-                                      sent_at=time.time(), least_s=least,
+        out = self.run([(launch, dict(kwargs, solver=self.solver,
+                                      time_limit_s=least[k] if least[k] else left,
+                                      sent_at=time.time(), least_s=least[k], deadline_at=at,
                                       known=known.get(launch.index),
                                       path_tol_rel=self.gap_rel / 2))
-                        for launch, kwargs in tasks])  # fmt: skip
+                        for k, (launch, kwargs) in enumerate(tasks)])  # fmt: skip
         self.pricings += len(out)
         return out
 
@@ -279,8 +291,12 @@ class CampaignSearch:
         """Step 1: each launch priced alone; infeasible launches end the campaign."""
         self.say(f"campaign: {len(self.launches)} launches, {len(self.catalog)} candidates; "
                  "each launch alone")  # fmt: skip
-        results = self.price_all([(launch, self.unpriced()) for launch in self.variants],
-                                 share=True)  # fmt: skip
+        # the fewest debris of every launch first, with more time: a plan for each soonest
+        order = sorted(self.variants, key=lambda v: (v.mission.n, v.index))
+        weights = [FEWEST_WEIGHT if v.mission.n == self.campaign.fewest(v.index) else 1.0
+                   for v in order]  # fmt: skip
+        results = self.price_all([(launch, self.unpriced()) for launch in order],
+                                 share=weights)  # fmt: skip
         self.alone_bounds = self.per_launch(results)
         alone = [best_of_counts([r for r in results if r.launch == k])
                  for k in range(len(self.launches))]  # fmt: skip
@@ -306,7 +322,7 @@ class CampaignSearch:
         # (remove_all: every one), the missions' sizes add up to at least their number
         self.lagrangian = float(np.sum(self.alone_bounds))
         sizes: dict[int, dict[int, float]] = {}
-        for variant, result in zip(self.variants, results, strict=True):
+        for variant, result in zip(order, results, strict=True):
             sizes.setdefault(variant.index, {})[variant.mission.n] = result.lower_mps
         self.lower = max(self.lower, self.lagrangian, sizes_bound(sizes, len(self.must)))
         self.centre = uniform_centre(sizes, np.asarray(self.must, dtype=int),
@@ -466,33 +482,3 @@ class CampaignSearch:
         counts = self.campaign.counts_text().split(", ")
         return ", ".join(f"n = {n} from day {d:g}" for d, n in zip(
             self.campaign.launch_days, counts, strict=True))  # fmt: skip
-
-
-def shown_bound(lower: float) -> float | None:
-    """The bound as reported [m/s]: at least 0 (every mission's ΔV is, so 0 is always a
-    bound, and an early master LP, priced against artificial columns, may prove less);
-    None while none is proven (``-inf``)."""
-    return max(float(lower), 0.0) if np.isfinite(lower) else None
-
-
-def sizes_bound(bounds: dict[int, dict[int, float]], required: int) -> float:
-    """The least sum of the launches' bounds over mission sizes that remove at least
-    ``required`` debris in all [m/s] (a dynamic programme over launches and debris).
-
-    ``bounds[k][n]``: no mission of launch k with n debris costs less [m/s].  Every
-    campaign flies one mission per launch, no debris twice, and removes the debris that
-    must go: its sizes add up to at least their number, and each mission costs at least
-    its launch's bound for its size.  With nothing required, the sum of each launch's
-    least bound.
-    """
-    if not all(bound > -np.inf for by_size in bounds.values() for bound in by_size.values()):
-        return -np.inf  # a size with no bound proven
-    best = np.full(required + 1, np.inf)
-    best[0] = 0.0
-    reached = np.arange(required + 1)
-    for by_size in bounds.values():
-        step = np.full(required + 1, np.inf)
-        for size, bound in by_size.items():
-            np.minimum.at(step, np.minimum(reached + size, required), best + bound)
-        best = step
-    return float(best[required])

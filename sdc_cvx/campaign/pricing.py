@@ -139,7 +139,7 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
           ceiling_mps: float = -np.inf,
           time_limit_s: float | None = None, exclude=(), must_visit=(), seeds=(),
           known=None, stop=None, sent_at: float | None = None,
-          least_s: float = 0.0) -> Pricing:  # fmt: skip
+          least_s: float = 0.0, deadline_at: float | None = None) -> Pricing:  # fmt: skip
     """The cheapest missions of ``launch`` with ``prices`` added to the debris' costs.
 
     Parameters
@@ -165,6 +165,11 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
         ``time.time()`` when the task was handed out: the time it waited for a worker
         counts against ``time_limit_s`` (a queue of 5 launches on 2 workers overran a
         15 s campaign by 4 s), down to ``least_s`` [s].
+    deadline_at : float, optional
+        ``time.time()`` of the campaign's own deadline: the limit never runs past it, a
+        share ``least_s`` included, and a pricing that starts after it returns at once
+        without a plan (the shares of 27 pricings on 2 workers, each a little over its
+        own, ran a 60 s campaign to 70 s).
     exclude, must_visit : sequence of int
         Catalog rows this pricing must leave out / must remove (the greedy campaign).
     seeds : sequence of tuple of int
@@ -183,6 +188,13 @@ def price(launch: Launch, prices=None, *, solver: SolverOptions | None = None,
     clock = time.perf_counter()
     if time_limit_s is not None and sent_at is not None:  # time spent waiting counts
         time_limit_s = max(time_limit_s - (time.time() - sent_at), least_s, 0.0)
+    if deadline_at is not None:
+        time_limit_s = min(np.inf if time_limit_s is None else time_limit_s,
+                           deadline_at - time.time())  # fmt: skip
+        if time_limit_s <= 0.0:
+            return Pricing(launch.index, (), -np.inf, np.inf, "no_plan", 0.0,
+                           ("the time limit came before this pricing started",),
+                           complete=False)  # fmt: skip
     mission = launch.mission
     nodes = MissionNodes.of(launch.catalog, mission)
     orbits = node_orbits(nodes.catalog, mission)

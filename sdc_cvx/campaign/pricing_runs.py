@@ -88,8 +88,9 @@ def _not_run(launch) -> Pricing:
 
 
 def ignored_options(campaign, solver: SolverOptions) -> list[str]:
-    """The options set away from their defaults that a campaign does not use: its
-    missions are always priced by the certified search."""
+    """The options set away from their defaults that a campaign does not use (its
+    missions are always priced by the certified search), and n ranges a min-dv campaign
+    with nothing to remove leaves at their n_min: each said once, before the search."""
     out = []
     if solver.method != "certified":
         out.append(f"solver.method = {solver.method!r} is ignored: a campaign prices its "
@@ -101,6 +102,14 @@ def ignored_options(campaign, solver: SolverOptions) -> list[str]:
         out.append(f"mission.dv_max_mps = {', '.join(f'{v:g}' for v in capped)} is ignored: "
                    "it filters the edge table of the paper's method; the certified search "
                    "prices every transfer")  # fmt: skip
+    ranged = [k for k in range(len(campaign.missions))
+              if campaign.fewest(k) < campaign.missions[k].n]  # fmt: skip
+    if campaign.objective == "min-dv" and ranged and not (campaign.must_remove
+                                                          or campaign.remove_all):  # fmt: skip
+        out.append(f"n = {campaign.counts_text()} with objective = 'min-dv' and nothing to "
+                   "remove (no must_remove, no remove_all): the least ΔV as a rule takes each "
+                   "mission's n_min (fewer debris cost less); give must_remove or remove_all, or "
+                   "objective = 'max-value' with dv_budget_mps, to remove more")  # fmt: skip
     return out
 
 

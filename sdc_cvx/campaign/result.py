@@ -137,6 +137,8 @@ class CampaignSolution:
         why = "; ".join(self.notes[-1:]) or "a limit stopped the search"
         if self.lower_bound_mps is None:
             return f"{self.status}, no bound yet ({why})"
+        if self.status == RunStatus.OPTIMAL and self.total_dv_mps <= 0.0:
+            return "optimal (0 m/s: each mission flies its launch alone, no transfer)"
         if not self.bound_known:
             return f"{self.status}, no useful bound yet: 0 m/s ({why})"
         gap = f"gap {self.gap_mps:.2f} m/s, {100 * self.gap_rel:.2f} %"

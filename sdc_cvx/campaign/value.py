@@ -56,6 +56,7 @@ from ..inputs.vehicle import propellant_budget
 from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from ..solution import OPTIMAL_GAP_MPS, RunStatus
+from .few import FEWEST_SEARCHED, price_counts, used_launches
 from .master import solve_ip
 from .plane_bound import campaign_plane_bound
 from .pricing import Column, Launch, Pricing, mission_solution
@@ -77,6 +78,9 @@ START_SHARE = 0.25
 FORCED_SHARE = 0.5
 """Share of the time left the min-ΔV campaign of the debris the plane-change bound forces
 may take (:func:`_forced`)."""
+TIE_MPS = 1e-7
+"""ΔV each debris adds when the least ΔV of the most value is chosen [m/s]: of equal ΔV, the
+fewest debris (a launch unused, not sent to a debris worth nothing at 0 m/s)."""
 PATH_GAP_REL = 1e-4
 """Relative tolerance of each enumerated path's schedule (undecided paths lie within it
 of their budget)."""
@@ -123,14 +127,13 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
                 break
             wave = [(j, m) for e, j, m in steps if e == extra
                     and (narrowed is None or (j, m) in narrowed)]  # fmt: skip
-            tasks = [(replace(launches[j], mission=launches[j].mission.replace(n=m)),
-                      dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
-                           time_limit_s=None if not np.isfinite(left) else left,
-                           exclude=tuple(int(i) for i in exclude),
-                           sent_at=time.time())  # a task waiting for a worker has less
+            tasks = [(j, m, dict(solver=solver, gap_rel=PATH_GAP_REL, path_tol_rel=PATH_GAP_REL,
+                                 time_limit_s=None if not np.isfinite(left) else left,
+                                 exclude=tuple(int(i) for i in exclude),
+                                 sent_at=time.time())  # a task waiting for a worker has less
                       | _under(narrowed, j, m, float(campaign.dv_budget_mps[j])))
                      for j, m in wave]  # fmt: skip
-            done.update(zip(wave, run(tasks), strict=True) if tasks else ())
+            done.update(zip(wave, price_counts(run, launches, tasks), strict=True))
         if (k, n) not in done:  # narrowed away: proven to hold no mission that matters
             done[(k, n)] = Pricing(k, (), np.inf, np.inf, "optimal", 0.0)
         pricing = done[(k, n)]
@@ -163,17 +166,17 @@ def enumerate_missions(launches: list[Launch], campaign: Campaign, *, solver: So
 def tank_fits(launches: list[Launch]):
     """``fits(column)``: the propellant of the column's schedule (its legs' and its
     operations' ΔV, :func:`~sdc_cvx.inputs.vehicle.propellant_budget`, kits left at each
-    debris) fits its launch's tank."""
+    debris) fits its launch's tank; a launch unused (no debris) flies no vehicle."""
     operations = {}
 
     def fits(column: Column) -> bool:
         launch = launches[column.launch]
         if column.launch not in operations:
             operations[column.launch] = MissionNodes.of(launch.catalog, launch.mission).cost_mps
-        budget = propellant_budget(launch.mission.vehicle, column.schedule.dv_mps,
-                                   operations[column.launch][list(column.nodes)],
-                                   kit_at_start=launch.mission.injection is None)  # fmt: skip
-        return budget.fits
+        return not column.nodes or propellant_budget(
+            launch.mission.vehicle, column.schedule.dv_mps,
+            operations[column.launch][list(column.nodes)],
+            kit_at_start=launch.mission.injection is None).fits  # fmt: skip
 
     return fits
 
@@ -209,6 +212,8 @@ def best_value(columns: list, values: np.ndarray, launches: int, debris: int, *,
         return None, -np.inf
     value = -most.value
     hold = value - VALUE_TOL * max(1.0, abs(value))
+    if costs is None:  # of equal ΔV, the fewest debris (TIE_MPS)
+        costs = np.array([c.dv_mps + TIE_MPS * len(c.debris) for c in columns])
     plan = solve_ip(columns, launches, debris, solver=solver, costs=costs,
                     at_least=(worth, hold))  # fmt: skip
     return plan, value
@@ -256,6 +261,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         if forced is not None:
             return forced
     upper, priced = plane.value, len(counts_of(launches, campaign))
+    proven_from = -np.inf  # the pool holds every mission of a campaign worth at least this
     # every mission within budget, if that ends in a share of the time (small programmes)
     columns, undecided, complete = enumerate_all(
         deadline=deadline if price is not None else _share(PLAIN_SHARE, deadline))
@@ -285,6 +291,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
             narrowed = {(k, n): how for (k, n), how in narrowed.items() if n >= fewest[k]}
             say(f"  to beat {best:g}: {len(excluded)} debris ruled out by their value, "
                 f"{len(narrowed)} of {len(counts_of(launches, campaign))} counts left")
+            proven_from = best
         columns, undecided, complete = enumerate_all(deadline=deadline, found=found,
                                                      narrowed=narrowed, exclude=excluded)
     if price is None:
@@ -345,7 +352,7 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
                 else None, dv_mps=dv, pricings=priced,
                 dv_bound_mps=dv_bound if complete else None, status=status,
                 columns=len(columns), notes=tuple(notes), complete=complete,
-                pool=(columns, undecided, values))  # fmt: skip
+                pool=(columns, undecided, values), proven_from=proven_from)  # fmt: skip
 
 
 def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline, say, stop,
@@ -396,8 +403,8 @@ def _priced(columns: list, values: np.ndarray, price: float, launches: int, debr
 
 
 def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: int,
-                 debris: int, points: int, *, solver: SolverOptions,
-                 proven: bool = True) -> tuple[dict, ...]:  # fmt: skip
+                 debris: int, points: int, *, solver: SolverOptions, proven: bool = True,
+                 proven_from: float = -np.inf) -> tuple[dict, ...]:  # fmt: skip
     """Campaigns of value against ΔV, each the cheapest of at least a target value.
 
     The targets run evenly from the value of the cheapest campaign to the most value
@@ -405,7 +412,9 @@ def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: i
     is the same program over every path at its bound: no campaign of at least that value
     costs less (the ε-constraint method: every point is on the front, within the bound);
     None for every point unless ``proven`` (the enumeration of the missions within budget
-    was complete: else a mission it missed might make a campaign cheaper).
+    was complete: else a mission it missed might make a campaign cheaper), and None for a
+    target below ``proven_from`` (the narrowed enumeration holds every mission of a
+    campaign worth at least that value, not the missions of a cheaper, less valuable one).
     """
     everything = columns + undecided
     worth = _worth(columns, values)
@@ -420,8 +429,9 @@ def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: i
     for target in np.linspace(least, most, max(points, 2)):
         hold = target - VALUE_TOL * max(1.0, abs(target))
         plan = solve_ip(columns, launches, debris, solver=solver, at_least=(worth, hold))
-        floor = None if not proven else solve_ip(everything, launches, debris, solver=solver,
-                                                 costs=lows, at_least=(worth_all, hold))
+        covered = proven and target >= proven_from - VALUE_TOL * max(1.0, abs(proven_from))
+        floor = None if not covered else solve_ip(everything, launches, debris, solver=solver,
+                                                  costs=lows, at_least=(worth_all, hold))
         if plan is None or plan.chosen in seen:
             continue
         seen.add(plan.chosen)
@@ -447,9 +457,10 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
     front = ()
     if pareto and found["plan"] is not None:
         columns, undecided, values = found["pool"]
-        front = pareto_front(columns, undecided, values, len(campaign), len(catalog), pareto,
-                             solver=solver, proven=found["complete"])  # fmt: skip
-        catalog_ids = catalog.ids
+        proven_from = found.get("proven_from", -np.inf)
+        front, catalog_ids = pareto_front(
+            columns, undecided, values, len(campaign), len(catalog), pareto, solver=solver,
+            proven=found["complete"], proven_from=proven_from), catalog.ids  # fmt: skip
         front = tuple(row | {"missions": [[catalog_ids[i] for i in path if i < len(catalog_ids)]
                                           for path in row["missions"]]}
                       for row in front)  # fmt: skip
@@ -457,14 +468,21 @@ def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOption
         if not found["complete"]:
             found["notes"] += ("the front's ΔV bounds are not proven (a limit stopped the "
                                "enumeration of the missions within budget)",)
+        elif any(row["dv_bound_mps"] is None for row in front):
+            found["notes"] += (f"the front's ΔV bounds of values below {proven_from:g} are not "
+                               "proven (the enumeration was narrowed to the missions of "
+                               f"campaigns worth at least {proven_from:g})",)
     if found["plan"] is None:
         why = found["notes"][0]
         raise SolverFailure(why if why.startswith("no campaign") else f"{why}: allow more time")
     status = found["status"]
+    plan, campaign, unused = used_launches(found["plan"], campaign)  # n_min = 0: left out
+    found["notes"] += unused  # and a mission of one debris keeps its launch's Mission:
     sized = [replace(launch, mission=launch.mission.replace(n=len(c.debris)))
-             for launch, c in ((found["launches"][c.launch], c) for c in found["plan"])]
+             if len(c.debris) >= FEWEST_SEARCHED else launch
+             for launch, c in ((found["launches"][c.launch], c) for c in plan)]  # fmt: skip
     missions = tuple(mission_solution(launch, c, status, solver.backend)
-                     for launch, c in zip(sized, found["plan"], strict=True))  # fmt: skip
+                     for launch, c in zip(sized, plan, strict=True))  # fmt: skip
     status, notes = tank_status(missions, status, found["notes"])
     value, bound = (None if v is None else v + 0.0  # + 0.0: never "-0"
                     for v in (found["value"], found["value_bound"]))

@@ -64,11 +64,12 @@ References
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..milp.types import SolverOptions
+from .few import price_counts
 from .master import solve_lp
 
 TOL_MPS = 0.2
@@ -261,13 +262,13 @@ def lagrangian_bound(launches, campaign, values: np.ndarray, *, solver: SolverOp
         left = deadline - time.perf_counter()
         if left <= 0 or stop():
             break
-        tasks = [(replace(launches[k], mission=launches[k].mission.replace(n=n)),
-                  dict(prices=-(values - y) / mu[(k, n)], solver=solver, tol_mps=TOL_MPS,
-                       time_limit_s=left, sent_at=time.time()))
+        tasks = [(k, n, dict(prices=-(values - y) / mu[(k, n)], solver=solver, tol_mps=TOL_MPS,
+                             time_limit_s=left, sent_at=time.time()))
                  for k, n in counts]  # fmt: skip
         reduced = np.full(len(launches), -np.inf)
         lowers, before = {}, (found.proven, value)
-        for (k, n), (_, task), pricing in zip(counts, tasks, run(tasks), strict=True):
+        for (k, n), (_, _, task), pricing in zip(counts, tasks, price_counts(run, launches, tasks),
+                                                 strict=True):  # fmt: skip
             prices = task["prices"]
             for column in pricing.columns:
                 key = (k, column.debris)

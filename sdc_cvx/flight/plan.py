@@ -316,6 +316,12 @@ def run_folder_plans(folder, catalog_path=None) -> list[tuple[Path, FlightPlan]]
         raise FlightError(f"{campaign}: no missions to fly (field 'missions': expected a "
                           "non-empty list)")  # fmt: skip
     subs = [_mission_folder(folder, campaign, k, entry) for k, entry in enumerate(missions)]
+    # a mission of one debris (a value campaign's n_min = 1) is its launch: nothing to fly
+    subs = [sub for sub, entry in zip(subs, missions, strict=True)
+            if not (isinstance(entry.get("path"), list) and len(entry["path"]) == 1)]
+    if not subs:
+        raise FlightError(f"{campaign}: every mission removes one debris (its launch alone): "
+                          "no leg to fly")  # fmt: skip
     return [(sub, FlightPlan.from_run_folder(sub, scenario_file=folder / "scenario.toml",
                                              campaign_start=data.get("start_utc"),
                                              catalog_path=catalog_path))

@@ -224,14 +224,27 @@ class Campaign:
                    "what to remove)")  # fmt: skip
 
     def _range_problems(self, count: int):
-        if self.n_min:
-            bad = len(self.n_min) != count or not all(
-                isinstance(k, numbers.Integral) and not isinstance(k, bool) and 2 <= k <= m.n
-                for k, m in zip(self.n_min, self.missions, strict=False))  # fmt: skip
-            if bad:
-                yield (f"n ranges must be [n_min, n_max] with 2 <= n_min <= n_max, one per "
-                       f"launch, got n_min {list(self.n_min)} for n_max "
-                       f"{[m.n for m in self.missions]}")  # fmt: skip
+        if not self.n_min:
+            return
+        # a value objective may leave a launch unused (0) or fly one debris (the launch
+        # alone); a min-dv campaign removes n_min at least, each mission two at least
+        low = 0 if self.objective != "min-dv" else 2
+        bad = len(self.n_min) != count or not all(
+            isinstance(k, numbers.Integral) and not isinstance(k, bool) and low <= k <= m.n
+            for k, m in zip(self.n_min, self.missions, strict=False))  # fmt: skip
+        if bad:
+            why = " (objective = 'min-dv': a mission removes two debris at least)" if low else ""
+            yield (f"n ranges must be [n_min, n_max] with {low} <= n_min <= n_max, one per "
+                   f"launch, got n_min {list(self.n_min)} for n_max "
+                   f"{[m.n for m in self.missions]}{why}")  # fmt: skip
+            return
+        injected = [k + 1 for k, (few, m) in enumerate(zip(self.n_min, self.missions,
+                                                           strict=True))
+                    if few == 1 and isinstance(m, Mission) and m.injection is not None]  # fmt: skip
+        if injected:
+            yield (f"mission {', '.join(map(str, injected))}: n_min = 1 with an injection "
+                   "orbit (a mission of one debris is then a transfer, not searched): "
+                   "n_min = 0 or >= 2, or no injection")  # fmt: skip
 
     @property
     def tank_limited(self) -> bool:

@@ -53,7 +53,14 @@ class CampaignOptimum:
 
 
 def best_sets(catalog: Catalog, day: float, n: int, tmax: float, rule: str) -> dict:
-    """Every debris set of n a mission launched on ``day`` removes: {frozenset: best dv}."""
+    """Every debris set of n a mission launched on ``day`` removes: {frozenset: best dv}.
+
+    ``n = 0``: the launch unused (0 m/s); ``n = 1``: the launch onto the debris' orbit
+    alone, 0 m/s (no operations cost, no deorbit time, as the cases here have)."""
+    if n == 0:
+        return {frozenset(): 0.0}
+    if n == 1:
+        return {frozenset([str(k)]): 0.0 for k in catalog.ids}
     moved = advanced(catalog, day)
     middle, zoom = GRID[n]
     en = Enumeration(moved, n, tmax, middle_count=middle, zoom_count=zoom, walk=8)

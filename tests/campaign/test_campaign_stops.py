@@ -16,7 +16,8 @@ import time
 import numpy as np
 import pytest
 
-from sdc_cvx import Mission
+from sdc_cvx import Mission, SolverFailure
+from sdc_cvx.campaign.pricing import Pricing
 from sdc_cvx.campaign.result import CampaignSolution
 from sdc_cvx.campaign.search import shown_bound, solve_campaign
 from sdc_cvx.inputs.campaign import Campaign
@@ -339,3 +340,67 @@ def test_the_column_generation_stops_where_the_gap_left_is_the_integer_gap(catal
     assert not search.integer_gap(lp(5489.96, artificial=0.5))
     search.upper = 7000.0  # a gap of 22 % of the plan: the closing step runs instead
     assert not search.integer_gap(lp(5474.0))
+
+
+def test_the_launches_alone_share_the_time_left_and_none_runs_past_the_deadline(catalog):
+    """Found as a user (issue 48, item 12): ``--time-limit 60`` on a GTOC9 campaign of
+    three launches with ``n = [[2, 10]]`` took 121 s.  Its 27 pricings on 2 workers each
+    got the whole time left at first (then each later one its share): now each has its
+    share (a launch's fewest debris more: its plan is the first campaign's), the shares
+    add up to the time left on the workers, the fewest of every launch go first, and
+    every pricing is told the deadline (benchmarks/time_limit.py --ranges measures it)."""
+    from sdc_cvx.campaign.min_dv import FEWEST_WEIGHT, CampaignSearch
+    from sdc_cvx.milp.types import SolverOptions
+
+    sent = []
+
+    def run(tasks):  # what each pricing would be told, and no plan from any
+        sent.extend(tasks)
+        return [Pricing(launch.index, (), -np.inf, np.inf, "no_plan", 0.0, complete=False)
+                for launch, _ in tasks]  # fmt: skip
+
+    campaign = Campaign.of([0.0, 200.0, 400.0], Mission(tmax_days=300.0), n=[[2, 4]])
+    limit = 60.0
+    search = CampaignSearch(catalog, campaign, SolverOptions(), 1e-3,
+                            time.perf_counter() + limit, lambda line: None, run)  # fmt: skip
+    search.at_once = 2
+    with pytest.raises(SolverFailure, match="before any plan"):
+        search.launches_alone()
+    assert len(sent) == 9
+    counts = [launch.mission.n for launch, _ in sent]
+    assert counts == sorted(counts) and counts[:3] == [2, 2, 2]
+    limits = np.array([options["time_limit_s"] for _, options in sent])
+    assert limits.sum() == pytest.approx(2 * limit, rel=1e-3)  # the two workers' time
+    assert limits[:3] == pytest.approx(FEWEST_WEIGHT * limits[3:].mean(), rel=1e-6)
+    assert all(options["least_s"] == options["time_limit_s"] for _, options in sent)
+    deadline = {options["deadline_at"] for _, options in sent}
+    assert len(deadline) == 1 and deadline.pop() == pytest.approx(time.time() + limit, abs=1.0)
+
+
+def test_a_pricing_that_starts_after_the_deadline_returns_at_once(catalog):
+    from sdc_cvx.campaign.pricing import Launch, price
+
+    (launch,) = Launch.all_of(Campaign.of([0.0], Mission(n=3, tmax_days=300.0)), catalog)
+    clock = time.perf_counter()
+    result = price(launch, time_limit_s=30.0, least_s=30.0, deadline_at=time.time() - 0.1)
+    assert time.perf_counter() - clock < 0.05
+    assert result.status == "no_plan" and not result.complete and not result.columns
+    assert "the time limit came before this pricing started" in result.notes
+    # within its deadline, the least of its limit and the time to it
+    clock = time.perf_counter()
+    price(launch, time_limit_s=30.0, deadline_at=time.time() + 0.5)
+    assert time.perf_counter() - clock < 5.0
+
+
+@pytest.mark.slow
+def test_the_header_says_the_search_may_run_up_to_its_share_of_the_limit(tmp_path):
+    """Found as a user (issue 48, item 20): 'The search gets 117.4 s of the 120 s limit'
+    read as how long the campaign would take; it stops sooner once proven."""
+    (tmp_path / "c.toml").write_text("[mission]\ntmax_days = 365.25\n[campaign]\n"
+                                     "launch_days = [0.0, 365.25]\nn = 2\n")  # fmt: skip
+    done = subprocess.run([sys.executable, "-m", "sdc_cvx", "campaign", str(tmp_path / "c.toml"),
+                           "--time-limit", "120", "--out", str(tmp_path / "out")],
+                          capture_output=True, text=True, cwd=REPO, timeout=300)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "The search may run up to" in done.stderr and "of the 120 s limit: it stops " \
+        "sooner once the campaign is proven" in done.stderr, done.stderr  # fmt: skip

@@ -86,3 +86,22 @@ def test_the_box_lp_is_its_dual_and_keeps_the_prices_in_the_box(seed):
     wide = solve_lp(columns, launches, debris, must, box=(np.zeros(debris), 1e6))
     assert wide.boxed == pytest.approx(0.0, abs=1e-9)
     assert wide.value == pytest.approx(plain.value, rel=1e-7, abs=1e-6)
+
+
+def test_a_packing_rows_price_is_never_negative():
+    """A debris that may stay has a row "removed at most once": its multiplier must be
+    >= 0 for the Lagrangian bound ``sum_k min_c (cost_c + sum_{i in c} y_i) - sum_i y_i``
+    to bound every campaign (a negative y_i counts a debris no campaign removes as a
+    prize).  HiGHS gives debris 6 a price of -7.4e-13 on this pool (found by a search
+    over random pools; the artificial columns are at the optimum), which the master must
+    not pass on to the pricing."""
+    pool = [(0, (0, 3, 6), 20.0), (0, (2, 4, 5), 30.0), (0, (2, 4, 5), 134.4029767792666),
+            (0, (0, 2, 3), 964.4502206741796), (1, (2, 3, 5), 20.0),
+            (1, (0, 2, 3), 342.7277586778015), (2, (1, 3, 6), 792.4388520699708),
+            (2, (0, 1, 4), 678.7626759024807), (2, (1, 3, 6), 20.0),
+            (2, (2, 3, 4), 812.9636535970384), (2, (2, 3, 5), 350.61174793055784),
+            (2, (4, 5, 6), 30.0), (2, (0, 1, 4), 288.17533259215924)]  # fmt: skip
+    columns = [SimpleNamespace(launch=k, debris=debris, dv_mps=dv) for k, debris, dv in pool]
+    lp = solve_lp(columns, 3, 7)
+    assert lp.value == pytest.approx(dual_by_linprog(columns, 3, 7, (), None), rel=1e-9)
+    assert np.all(lp.prices >= 0.0), lp.prices

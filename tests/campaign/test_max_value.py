@@ -340,6 +340,40 @@ def test_a_front_whose_enumeration_was_stopped_claims_no_bound(monkeypatch):
 
 
 @pytest.mark.slow
+def test_a_front_after_the_narrowed_enumeration_claims_bounds_only_where_it_has_them(
+        monkeypatch):  # fmt: skip
+    """Review of the bound (issue 48, item 21): the narrowed enumeration holds only the
+    missions of campaigns worth at least the best found before it (21 here), so the
+    front's ΔV bounds of lower targets (18 to 20) are not proven; from 21 on they are,
+    and they are below the brute force's cheapest campaign of each target."""
+    from sdc_cvx.campaign import value
+    from tests.campaign.bruteforce import campaigns_of, value_options
+
+    monkeypatch.setattr(value, "PLAIN_SHARE", 0.0)
+    case = CASES[-1].values[0]
+    lines: list[str] = []
+    sol = solve_campaign(case.catalog(), case.campaign(), workers=1, pareto=8,
+                         time_limit_s=3600.0, log=lines.append)  # fmt: skip
+    said = [line for line in lines if "to beat " in line]
+    assert said, lines
+    narrowed_to = float(said[0].split("to beat ")[1].split(":")[0])
+    front = sorted(sol.pareto, key=lambda row: row["value"])
+    below = [row for row in front if row["target_value"] < narrowed_to - 1e-9]
+    above = [row for row in front if row["target_value"] >= narrowed_to - 1e-9]
+    assert below and above, (narrowed_to, front)
+    assert all(row["dv_bound_mps"] is None for row in below), below
+    assert any(f"values below {narrowed_to:g} are not proven" in note for note in sol.notes)
+    options, margin = value_options(case.catalog(), case.launch_days, case.ranges, case.tmax,
+                                    case.budgets, case.rule)  # fmt: skip
+    assert margin > 2 * GRID_TOL_MPS
+    every = list(campaigns_of(options, case.values()))
+    for row in above:
+        cheapest = min(dv for worth, dv, _ in every if worth >= row["target_value"] - 1e-9)
+        assert row["dv_bound_mps"] is not None and row["dv_bound_mps"] <= cheapest + 1e-6
+    assert sol.status == RunStatus.OPTIMAL  # the most valuable campaign's bound holds
+
+
+@pytest.mark.slow
 def test_a_stopped_enumeration_returns_the_campaign_it_has_and_its_bound(monkeypatch):
     """A limit during the narrowed enumeration still returns the best campaign found,
     within the budgets: ``feasible``, no ΔV bound claimed, and the value bound the
