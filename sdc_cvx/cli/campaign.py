@@ -159,8 +159,9 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
     if time_limit_s is not None:  # covers the command: a folder per mission to write after
         limit, time_limit_s = time_limit_s, search_limit(
             time_limit_s, started, MISSION_FOLDER_S * (len(campaign) + 1))  # fmt: skip
-        header += (f"\nThe search gets {time_limit_s:.1f} s of the {limit:g} s limit (the rest "
-                   "reads the catalog and writes the campaign folder).")  # fmt: skip
+        header += (f"\nThe search may run up to {time_limit_s:.1f} s of the {limit:g} s limit: "
+                   "it stops sooner once the campaign is proven (the rest reads the catalog "
+                   "and writes the campaign folder).")  # fmt: skip
     info(header)
     show_progress = (sys.stderr.isatty() if progress is None else progress) and not quiet
     live_log, stream, made = open_progress_log(out_dir)
@@ -240,11 +241,12 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
 
 
 def _shortened(items: list[str], most: int = 8) -> str:
-    """``items`` joined, the middle left out past ``most`` (``a, b, c, ..., z (25)``)."""
+    """``items`` joined, the middle left out past ``most`` (``a, b, c, ..., z (25)``); one
+    item for all, as ``n = [[2, 3]]`` is written, is said once (``2-3 each``)."""
+    if len(items) > 1 and len(set(items)) == 1:
+        return f"{items[0]} each"
     if len(items) <= most:
         return ", ".join(items)
-    if len(set(items)) == 1:
-        return f"{items[0]} each"
     return f"{', '.join(items[:3])}, ..., {items[-1]} ({len(items)})"
 
 
