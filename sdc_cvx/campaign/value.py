@@ -310,10 +310,14 @@ def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptio
         if complete and not undecided:
             empty = [launch.label() for launch in launches
                      if not any(c.launch == launch.index for c in columns)]  # fmt: skip
-            why = (f"no mission of {', '.join(empty)} fits its ΔV budget" if empty else
+            limit = ("its tank's ΔV" if getattr(campaign, "budgets_from_tank", False)
+                     else "its ΔV budget")  # fmt: skip
+            raise_ = ("give a larger tank (propellant_kg)"
+                      if getattr(campaign, "budgets_from_tank", False) else "raise dv_budget_mps")
+            why = (f"no mission of {', '.join(empty)} fits {limit}" if empty else
                    "the missions within budget cannot remove each debris once")  # fmt: skip
-            raise MissionInfeasible(f"proven: {why} (every path enumerated); raise "
-                                    "dv_budget_mps, lower n_min or lengthen tmax_days")
+            raise MissionInfeasible(f"proven: {why} (every path enumerated); {raise_}, "
+                                    "lower n_min or lengthen tmax_days")
         return dict(plan=None, launches=launches, notes=(
             "the limit stopped the enumeration before a campaign was found",))
     chosen = [columns[c] for c in plan.chosen]

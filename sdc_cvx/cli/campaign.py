@@ -241,11 +241,12 @@ def campaign_command(scenario_file, out_dir, time_limit_s, gap, workers, schedul
 
 
 def _shortened(items: list[str], most: int = 8) -> str:
-    """``items`` joined, the middle left out past ``most`` (``a, b, c, ..., z (25)``)."""
+    """``items`` joined, the middle left out past ``most`` (``a, b, c, ..., z (25)``); one
+    item for all, as ``n = [[2, 3]]`` is written, is said once (``2-3 each``)."""
+    if len(items) > 1 and len(set(items)) == 1:
+        return f"{items[0]} each"
     if len(items) <= most:
         return ", ".join(items)
-    if len(set(items)) == 1:
-        return f"{items[0]} each"
     return f"{', '.join(items[:3])}, ..., {items[-1]} ({len(items)})"
 
 

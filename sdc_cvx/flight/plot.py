@@ -15,7 +15,7 @@ from .plan import miss_text
 if TYPE_CHECKING:
     from .result import Flight
 
-FIGURE_SIZE = (9.0, 7.0)
+FIGURE_SIZE = (9.0, 9.0)
 
 
 def plan_altitude(flight: Flight) -> tuple[np.ndarray, np.ndarray]:
@@ -54,9 +54,17 @@ def _orbit_means(days, altitude, period_days=100.0 / 1440.0):
 
 
 def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
-    """Write ``flight.png``: misses and ΔV per leg (top), altitudes (bottom)."""
+    """Write ``flight.png`` (:func:`flight_plot`)."""
+    write_figure(flight_plot(flight), Path(path), "png", dpi)
+
+
+def flight_plot(flight: Flight) -> Figure:
+    """``flight.png``'s figure: ΔV per leg (top), the miss at each rendezvous (middle),
+    altitudes (bottom).  The misses have a panel of their own: on a second axis of the
+    ΔV panel their zero sat at the bottom, below the ΔV's zero whenever a leg's ΔV was
+    negative, and a miss of a millimetre was drawn metres of ΔV below zero."""
     fig = Figure(figsize=FIGURE_SIZE, layout="constrained")
-    top, bottom = fig.subplots(2, 1)
+    top, middle, bottom = fig.subplots(3, 1, height_ratios=(1.0, 0.7, 1.4))
     meetings = flight.rendezvous
     legs = np.arange(1, len(meetings) + 1)
     width = 0.38
@@ -69,20 +77,22 @@ def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
             color="#fd8d3c")  # fmt: skip
     top.axhline(0.0, color="#444444", lw=0.8)
     top.set_ylabel("ΔV [m/s]")
-    top.set_xticks(legs, [f"leg {k}\n→ {m.target}" for k, m in zip(legs, meetings, strict=True)])
-    misses = top.twinx()
+    names = [f"leg {k}\n→ {m.target}" for k, m in zip(legs, meetings, strict=True)]
+    top.set_xticks(legs, names)
+    top.legend(fontsize=9, loc="best")
     metres = max((m.miss_km for m in meetings), default=0.0) < 1.0  # guided: metres at most
     scale, unit = (1e3, "m") if metres else (1.0, "km")
-    misses.plot(legs, [m.miss_km * scale for m in meetings], "ko", label=f"miss [{unit}]")
-    misses.set_ylabel(f"position miss at the rendezvous [{unit}]")
+    middle.plot(legs, [m.miss_km * scale for m in meetings], "ko", label=f"miss [{unit}]")
+    middle.set_ylabel(f"miss [{unit}]")
+    middle.set_title("position miss at each rendezvous", fontsize=9)
+    middle.set_xticks(legs, names)
+    middle.set_xlim(top.get_xlim())
     found = [m.miss_km for m in meetings if m.miss_km > 0]
     if found and max(found) > 100.0 * min(found):  # a missed debris beside km-size misses
-        misses.set_yscale("log")
+        middle.set_yscale("log")
     else:
-        misses.set_ylim(bottom=0.0)
-    handles = top.get_legend_handles_labels()
-    extra = misses.get_legend_handles_labels()
-    top.legend(handles[0] + extra[0], handles[1] + extra[1], fontsize=9, loc="upper left")
+        middle.set_ylim(0.0, 1.15 * max(found, default=1.0 / scale) * scale)
+    middle.grid(axis="y", alpha=0.3)
     status = flight.status
     top.set_title(f"Status {status}: {flight.flown_dv_mps:.2f} m/s flown against the "
                   f"plan's {flight.planned_dv_flown_mps:.2f} m/s"
@@ -103,4 +113,4 @@ def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
     bottom.set_xlabel(f"days after {flight.plan.start:%Y-%m-%d %H:%M} UTC")
     bottom.set_ylabel("altitude [km]")
     bottom.legend(fontsize=9, loc="best")
-    write_figure(fig, Path(path), "png", dpi)
+    return fig

@@ -232,11 +232,14 @@ class Campaign:
         bad = len(self.n_min) != count or not all(
             isinstance(k, numbers.Integral) and not isinstance(k, bool) and low <= k <= m.n
             for k, m in zip(self.n_min, self.missions, strict=False))  # fmt: skip
-        if bad:
+        if bad:  # the ranges as written: one for all launches, or one per launch
+            pairs = [[k, m.n] for k, m in zip(self.n_min, self.missions, strict=False)]
+            got = (f"n = {pairs[:1] if pairs.count(pairs[0]) == count else pairs}"
+                   if len(self.n_min) == count else f"n_min {list(self.n_min)} for n_max "
+                   f"{[m.n for m in self.missions]}")  # fmt: skip
             why = " (objective = 'min-dv': a mission removes two debris at least)" if low else ""
             yield (f"n ranges must be [n_min, n_max] with {low} <= n_min <= n_max, one per "
-                   f"launch, got n_min {list(self.n_min)} for n_max "
-                   f"{[m.n for m in self.missions]}{why}")  # fmt: skip
+                   f"launch, got {got}{why}")  # fmt: skip
             return
         injected = [k + 1 for k, (few, m) in enumerate(zip(self.n_min, self.missions,
                                                            strict=True))

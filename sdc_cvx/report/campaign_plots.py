@@ -68,17 +68,48 @@ def plot_timeline(solution) -> Figure:
                                        strict=True):  # fmt: skip
                 ax.annotate(name, (d, k), textcoords="offset points", xytext=(0, offset),
                             ha="center", fontsize=8)  # fmt: skip
-        ax.annotate(f"{mission.total_dv_mps:.0f} m/s", (end, k), textcoords="offset points",
+        ax.annotate(_mission_dv_text(solution, k), (end, k), textcoords="offset points",
                     xytext=(6, -3), fontsize=8, color="#444444")  # fmt: skip
     ax.set_yticks(range(len(solution.missions)),
                   [f"mission {k + 1}" for k in range(len(solution.missions))])  # fmt: skip
     ax.invert_yaxis()
     ax.set_ylim(len(solution.missions) - 0.4, -0.6)
     ax.set_xlabel("days after the campaign start")
-    ax.set_title(f"Campaign timeline: {solution.total_dv_mps:.1f} m/s in "
-                 f"{len(solution.missions)} missions")  # fmt: skip
+    ax.set_title(f"Campaign timeline: {_value_text(solution)}{solution.total_dv_mps:.1f} m/s "
+                 f"in {len(solution.missions)} missions")  # fmt: skip
     ax.grid(axis="x", alpha=0.3)
     return fig
+
+
+def _budgets(solution) -> tuple[float, ...]:
+    """Each mission's ΔV budget [m/s] of a value objective (its tank's ΔV where the
+    tank sets it); empty for min-dv, which has none."""
+    campaign = solution.campaign
+    budgets = tuple(getattr(campaign, "dv_budget_mps", ()) or ())
+    if getattr(campaign, "objective", "min-dv") == "min-dv":
+        return ()
+    return budgets if len(budgets) == len(solution.missions) else ()
+
+
+def _mission_values(solution) -> list[float] | None:
+    """The value each mission removes (None: not a value objective)."""
+    if solution.value is None:
+        return None
+    return [float(np.sum(solution.campaign.value_of(m.path))) for m in solution.missions]
+
+
+def _value_text(solution) -> str:
+    """``"value 5 removed, "`` for a value objective, else nothing."""
+    return "" if solution.value is None else f"value {solution.value:g} removed, "
+
+
+def _mission_dv_text(solution, k: int) -> str:
+    """Mission ``k``'s ΔV, with its budget and value under a value objective."""
+    text = f"{solution.missions[k].total_dv_mps:.0f}"
+    budgets = _budgets(solution)
+    text += f" of {budgets[k]:.0f} m/s" if budgets else " m/s"
+    values = _mission_values(solution)
+    return text if values is None else f"{text}, value {values[k]:g}"
 
 
 def _label_levels(row, span: float) -> list[float]:
@@ -148,17 +179,20 @@ def plot_raan(solution) -> Figure:
 
 
 def plot_dv(solution) -> Figure:
-    """ΔV of each mission: transfers and operations, with greedy's missions beside."""
+    """ΔV of each mission: transfers and operations, with greedy's missions beside; under
+    a value objective each mission's budget (a bar over it) and value (under its name)."""
     fig, ax = _figure()
     k = np.arange(len(solution.missions))
     transfers = [m.transfers_dv_mps for m in solution.missions]
     operations = [m.operations_dv_mps for m in solution.missions]
-    width = 0.38
-    ax.bar(k - width / 2, transfers, width, color=[_color(i) for i in k], label="transfers")
-    if any(operations):
-        ax.bar(k - width / 2, operations, width, bottom=transfers, color="#444444", alpha=0.5,
-               label="operations")  # fmt: skip
     greedy = [c.dv_mps for c in solution.greedy.missions]
+    width = 0.38
+    # a mission's bar beside greedy's where greedy has that mission, centred on its tick else
+    x = np.where(k < len(greedy), k - width / 2, k) if greedy else k.astype(float)
+    ax.bar(x, transfers, width, color=[_color(i) for i in k], label="transfers")
+    if any(operations):
+        ax.bar(x, operations, width, bottom=transfers, color="#444444", alpha=0.5,
+               label="operations")  # fmt: skip
     if greedy:
         ax.bar(
             np.arange(len(greedy)) + width / 2,
@@ -169,15 +203,23 @@ def plot_dv(solution) -> Figure:
             hatch="//",
             label="greedy (one mission at a time)",
         )
-    ax.set_xticks(k, [f"mission {i + 1}\nday {d:g}" for i, d in
-                      zip(k, solution.launch_days, strict=True)])  # fmt: skip
+    budgets = _budgets(solution)
+    if budgets:
+        ax.hlines(budgets, x - 0.6 * width, x + 0.6 * width, colors="#b2182b", linewidth=2,
+                  label="ΔV budget", gid="budget")  # fmt: skip
+        ax.set_ylim(0.0, 1.08 * max(max(budgets), *(np.add(transfers, operations))))
+    values = _mission_values(solution)
+    names = [f"mission {i + 1}\nday {d:g}" for i, d in zip(k, solution.launch_days, strict=True)]
+    if values is not None:
+        names = [f"{name}\nvalue {v:g}" for name, v in zip(names, values, strict=True)]
+    ax.set_xticks(k, names)
     ax.set_ylabel("ΔV [m/s]")
     greedy_text = (f"; greedy {solution.greedy.dv_mps:.1f} m/s"
                    if solution.greedy.dv_mps is not None else "")  # fmt: skip
     bound = (f"bound {solution.lower_bound_mps:.1f}" if solution.bound_known
              else "no useful bound yet")  # fmt: skip
-    ax.set_title(f"ΔV per mission: total {solution.total_dv_mps:.1f} m/s ({bound})"
-                 f"{greedy_text}")  # fmt: skip
+    ax.set_title(f"ΔV per mission: {_value_text(solution)}total {solution.total_dv_mps:.1f} "
+                 f"m/s ({bound}){greedy_text}")  # fmt: skip
     ax.legend(fontsize=8)
     ax.grid(axis="y", alpha=0.3)
     return fig

@@ -112,9 +112,14 @@ def _die_with(sweep_pid: int) -> None:
     results nobody will read).
 
     Two guards: on Linux the kernel sends SIGKILL when the worker's parent (the fork
-    server, which itself exits when the sweep dies) goes (``prctl(PR_SET_PDEATHSIG)``);
-    everywhere a daemon thread checks every half second that the sweep's process is
-    still there and ends the worker when it is not (``os._exit``).
+    server) goes (``prctl(PR_SET_PDEATHSIG)``); everywhere a daemon thread checks every
+    half second that the sweep's process is still running and ends the worker when it is
+    not (``os._exit``).  The fork server alone is no guard: it exits when every holder of
+    its "alive" pipe has closed it, and its workers hold it too.  A dead sweep that its
+    own parent has not reaped yet (a zombie, as under a launcher that reads its output
+    before waiting for it) still answers ``os.kill(pid, 0)``: on Linux its state in
+    ``/proc`` says it is dead; otherwise its pool, fork server and resource tracker would
+    live on, holding the launcher's pipes open.
     """
     import sys
     import threading
@@ -127,21 +132,34 @@ def _die_with(sweep_pid: int) -> None:
         except (OSError, AttributeError):
             pass
 
-    def alive(pid: int) -> bool:
-        try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            return False
-        except PermissionError:
-            return True
-        return True
-
     def watch() -> None:
-        while alive(sweep_pid):
+        while _process_running(sweep_pid):
             time.sleep(_WATCH_SECONDS)
         os._exit(1)
 
     threading.Thread(target=watch, name="sdc-sweep-watchdog", daemon=True).start()
+
+
+def _process_running(pid: int) -> bool:
+    """Whether process ``pid`` exists and has not ended: a zombie (ended, not yet reaped
+    by its parent) is not running, although ``os.kill(pid, 0)`` still finds it."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as stat:
+            state = stat.read().rsplit(b")", 1)[1].split()[0]
+    except FileNotFoundError:
+        if os.path.exists("/proc/self/stat"):
+            return False  # a /proc without it: gone
+    except (OSError, IndexError):
+        pass  # unreadable
+    else:
+        return state not in (b"Z", b"X")
+    try:  # no /proc (not Linux): ask the kernel
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
 
 
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3  # glibc's mallopt parameters

@@ -79,3 +79,48 @@ def test_a_selection_pattern_matching_nothing_names_the_scenario_file(tmp_path):
     assert result.exit_code == 2
     assert f"candidate selection ({path} [selection]" in result.output
     assert "'zzz*' match no debris of the catalog (paper Table 5)" in result.output
+
+
+@pytest.mark.slow
+def test_a_campaigns_header_says_the_range_written_once_and_the_search_limit_as_a_bound(
+        tmp_path):  # fmt: skip
+    """``n = [[2, 3]]`` was echoed "n = 2-3, 2-3", and "The search gets 13.9 s of the 20 s
+    limit" read as how long it would take (a budget of 1 m/s: proven infeasible at once,
+    after the header)."""
+    scenario = tmp_path / "value.toml"
+    scenario.write_text('[mission]\nn = 3\ntmax_days = 365.25\n\n[campaign]\nobjective = '
+                        '"max-value"\nlaunch_days = [0.0, 365.25]\nn = [[2, 3]]\n'
+                        "dv_budget_mps = 1.0\n", encoding="utf-8")  # fmt: skip
+    result = CliRunner().invoke(main, ["campaign", str(scenario), "--time-limit", "20",
+                                       "--out", str(tmp_path / "out")])  # fmt: skip
+    assert "n = 2-3 each)" in result.output, result.output
+    assert "The search may run up to" in result.output
+    assert "it stops sooner once the campaign is proven" in result.output
+    assert "The search gets" not in result.output
+
+
+@pytest.mark.parametrize("ranges, written", [([[4, 3]], "n = [[4, 3]]"),
+                                             ([[2, 3], [4, 3]], "n = [[2, 3], [4, 3]]")])
+def test_n_ranges_refused_are_echoed_as_written(ranges, written):
+    """``n = [[4, 3]]`` was refused as "got n_min [4, 4] for n_max [3, 3]": two ranges, and
+    in a form, that the user did not write."""
+    with pytest.raises(MissionError) as err:
+        Campaign.of([0.0, 365.25], n=ranges, objective="max-value", dv_budget_mps=100.0)
+    assert f"got {written}" in str(err.value) and "n_min [" not in str(err.value)
+
+
+def test_a_tank_too_small_for_any_mission_says_the_tank_not_the_budget():
+    """The budgets came from the tank (none written): "raise dv_budget_mps" named a key the
+    scenario did not have; the limit is the tank's."""
+    from sdc_cvx import Mission, MissionInfeasible, Vehicle, solve_campaign
+    from sdc_cvx.inputs.synthetic import sso_catalog
+
+    vehicle = Vehicle(dry_mass_kg=500.0, propellant_kg=0.5, isp_s=300.0, kit_mass_kg=150.0)
+    campaign = Campaign.of([0.0, 365.25], Mission(n=2, tmax_days=200.0, vehicle=vehicle),
+                           objective="max-value")  # fmt: skip
+    catalog = sso_catalog(8, seed=7, inclination_spread_deg=0.8)
+    with pytest.raises(MissionInfeasible) as err:
+        solve_campaign(catalog, campaign, workers=1)
+    text = str(err.value)
+    assert "fits its tank's ΔV" in text and "a larger tank (propellant_kg)" in text, text
+    assert "dv_budget_mps" not in text

@@ -68,3 +68,46 @@ def test_the_bound_figure_keeps_greedy_and_the_plan_in_its_frame(answer):
     fig = plot_bound(dataclasses.replace(answer, history=history, greedy=greedy))
     low, high = fig.axes[0].get_ylim()
     assert low < 821.4 - 10.0 and high > 1200.0 + 10.0
+
+
+@pytest.fixture(scope="module")
+def most_value():
+    """Two launches of at most 3 debris each within 400 and 300 m/s: every debris worth
+    1, so each mission's value is its number of debris."""
+    catalog = sso_catalog(9, seed=7, inclination_spread_deg=0.8)
+    campaign = Campaign.of([0.0, 365.25], Mission(n=3), n=[[2, 3], [2, 3]],
+                           objective="max-value", dv_budget_mps=[400.0, 300.0])  # fmt: skip
+    return solve_campaign(catalog, campaign, workers=1)
+
+
+def test_a_max_value_dv_figure_shows_each_missions_value_and_budget_over_its_bar(most_value):
+    """Issue 48, item 19: the figure of a max-value campaign said neither the value removed
+    nor the budgets (its objective), and its bars sat half a bar left of their ticks (the
+    place kept for greedy's, which max-value has not)."""
+    from sdc_cvx.report.campaign_plots import plot_dv
+
+    ax = plot_dv(most_value).axes[0]
+    removed = [len(m.path) for m in most_value.missions]
+    assert f"value {sum(removed)} removed" in ax.get_title()
+    ticks = ax.get_xticks()
+    labels = [label.get_text() for label in ax.get_xticklabels()]
+    assert [f"value {n}" in text for n, text in zip(removed, labels, strict=True)] == [True] * 2
+    bars = [patch for patch in ax.patches if patch.get_height() > 0]
+    centres = sorted(bar.get_x() + bar.get_width() / 2 for bar in bars)
+    np.testing.assert_allclose(centres, ticks, atol=1e-9)
+    (budget,) = [c for c in ax.collections if c.get_label() == "ΔV budget"]
+    segments = budget.get_segments()
+    np.testing.assert_allclose([s[0][1] for s in segments], [400.0, 300.0])
+    np.testing.assert_allclose([s[:, 0].mean() for s in segments], ticks, atol=1e-9)
+    assert ax.get_ylim()[1] > 400.0
+
+
+def test_a_max_value_timeline_shows_the_value_and_each_missions_budget(most_value):
+    ax = plot_timeline(most_value).axes[0]
+    removed = [len(m.path) for m in most_value.missions]
+    assert f"value {sum(removed)} removed" in ax.get_title()
+    texts = [text.get_text() for text in ax.texts]
+    for n, (dv, budget) in zip(removed, [(m.total_dv_mps, b) for m, b in
+                                         zip(most_value.missions, (400, 300), strict=True)],
+                               strict=True):  # fmt: skip
+        assert f"{dv:.0f} of {budget} m/s, value {n}" in texts

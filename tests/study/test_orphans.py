@@ -1,5 +1,6 @@
 """A sweep's workers die with it: SIGKILL of the sweep's process leaves no worker computing."""
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -78,3 +79,47 @@ def test_sigkill_of_the_sweep_leaves_no_worker(tmp_path):
             os.kill(pid, signal.SIGKILL)
         if sweep.poll() is None:
             sweep.kill()
+
+
+@pytest.mark.slow
+def test_a_killed_sweep_not_yet_reaped_leaves_its_launchers_pipes_closed(tmp_path):
+    """Issue 48, item 18: a launcher reading the sweep's output before waiting for it
+    (``stdout=PIPE``, then ``communicate()``) keeps the killed sweep a zombie; the workers
+    took it for alive, and they, the fork server and the resource tracker held the pipes
+    open for 30-80 s: ``communicate()`` did not return."""
+    study = tmp_path / "study.toml"
+    study.write_text(
+        f'base = "{EXAMPLES / "paper.toml"}"\n[grid]\n'
+        '"mission.tmax_days" = [300, 330, 365.25, 400, 450, 500]\n"mission.n" = [5, 6]\n'
+    )
+    sweep = subprocess.Popen(
+        [sys.executable, "-m", "sdc_cvx", "sweep", str(study), "--out", str(tmp_path / "out"),
+         "--workers", "2"],
+        cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    )  # fmt: skip
+    family: set[int] = set()
+    try:
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline:  # resource tracker, fork server, 2 workers
+            family = descendants(sweep.pid)
+            if len(family) >= 4:
+                break
+            time.sleep(0.2)
+        assert len(family) >= 4, "the sweep started no workers"
+        os.kill(sweep.pid, signal.SIGKILL)
+        time.sleep(2.0)  # not reaped: the sweep stays a zombie meanwhile
+        assert not alive(sweep.pid) and Path(f"/proc/{sweep.pid}").exists()
+        try:
+            sweep.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            pytest.fail(f"the sweep's pipes were still open 12 s after it was killed, by "
+                        f"{[pid for pid in family if alive(pid)]}")  # fmt: skip
+        survivors = [pid for pid in family if alive(pid)]
+        assert survivors == [], f"processes of the sweep still running: {survivors}"
+    finally:
+        for pid in [pid for pid in family if alive(pid)]:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+        if sweep.poll() is None:
+            sweep.kill()
+        sweep.communicate()
