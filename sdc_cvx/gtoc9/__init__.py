@@ -1,7 +1,8 @@
 """GTOC9 ("The Kessler Run") mission files and their validation (issue 47, item 4).
 
 - :mod:`.mission_file` - the competition's event format: :class:`Event`,
-  :func:`write_mission_file`, :func:`read_mission_file`;
+  :func:`write_mission_file`, :func:`read_mission_file`; :mod:`.campaign_file` - a
+  campaign folder (:func:`write_campaign`: ``gtoc9/mission_NN.txt`` and ``campaign.json``);
 - :mod:`.check` - :func:`check_folder` / :func:`check_mission`, every rule re-checked as
   the competition did (its docstring states the readings of the ambiguous ones);
 - :mod:`.rules` - GTOC9's constants (:class:`Gtoc9Rules`); :mod:`.dynamics` - its ODE;
@@ -13,6 +14,7 @@ References
    constants and submission-format pages, https://kelvins.esa.int/gtoc9-kessler-run/ (2017).
 """
 
+from .campaign_file import launch_mass, write_campaign
 from .check import FolderReport, MissionReport, Violation, check_folder, check_mission
 from .debris import DebrisTable, find_debris_file
 from .mission_file import Event, read_mission_file, write_mission_file
@@ -28,6 +30,8 @@ __all__ = [
     "check_folder",
     "check_mission",
     "find_debris_file",
+    "launch_mass",
     "read_mission_file",
+    "write_campaign",
     "write_mission_file",
 ]

@@ -1,13 +1,24 @@
 """GTOC9 mission files written by :func:`sdc_cvx.gtoc9.write_mission_file` (issue 47,
 item 4): every number back bit for bit, and files a GTOC9 validator can read."""
 
+import json
+
 import numpy as np
 import pytest
 
 from sdc_cvx.errors import MissionError
-from sdc_cvx.gtoc9 import Event, read_mission_file, write_mission_file
+from sdc_cvx.gtoc9 import Event, read_mission_file, write_campaign, write_mission_file
 from tests.gtoc9 import gtoc9_reference as ref
-from tests.gtoc9.test_gtoc9_check import A, check, mission_lines, rows, transfer  # noqa: F401
+from tests.gtoc9.test_gtoc9_check import (  # noqa: F401 (the fixtures rows, transfer)
+    T_DEPART_B,
+    A,
+    B,
+    check,
+    expected_m0,
+    mission_lines,
+    rows,
+    transfer,
+)
 
 
 def test_the_file_holds_every_number_to_the_last_bit(tmp_path):
@@ -83,3 +94,26 @@ def test_a_folder_without_mission_files_or_debris_file_exits_2(tmp_path, rows): 
     result = check(tmp_path, "--debris", str(tmp_path / "none.txt"))
     assert result.exit_code == 2 and "none.txt" in result.stderr
     assert check(tmp_path).exit_code == 0
+
+
+def test_a_campaign_folder_has_its_files_and_its_summary(tmp_path, rows, transfer):  # noqa: F811
+    numbers = [np.array(line.split(), float) for line in mission_lines(rows, transfer)]
+    first = [Event(n[0], n[1:4], n[4:7], n[7:10], int(n[10])) for n in numbers]
+    t = T_DEPART_B + 40.0
+    (r1, v1), (r2, v2) = ref.debris_state(rows[5], t), ref.debris_state(rows[5], t + 5.0)
+    second = [Event(t, r1, v1, (0, 0, 0), 5), Event(t + 5.0, r2, v2, (0, 0, 0), 5)]
+    path = write_campaign(tmp_path, [first, second])
+    summary = json.loads(path.read_text())
+    m0 = expected_m0([(n[7:10], k in (1, 3)) for k, n in enumerate(numbers)])
+    assert [m["debris"] for m in summary["missions"]] == [[A, B], [5]]
+    assert [m["file"] for m in summary["missions"]] == ["gtoc9/mission_01.txt",
+                                                        "gtoc9/mission_02.txt"]  # fmt: skip
+    assert summary["missions"][0]["m0_kg"] == pytest.approx(m0, rel=1e-12)
+    assert summary["missions"][1]["m0_kg"] == pytest.approx(2030.0, rel=1e-12)
+    cost = 55 + 2e-6 * (m0 - 2000) ** 2 + 55 + 2e-6 * 30.0**2
+    assert summary["J_meur"] == pytest.approx(cost, rel=1e-12)
+    result = check(tmp_path)
+    assert result.exit_code == 0, result.stderr
+    assert f"J = {cost:.4f} MEUR" in result.output
+    with pytest.raises(MissionError, match="holds 2 mission files already"):
+        write_campaign(tmp_path, [second])
