@@ -204,9 +204,14 @@ def check_mission(path, debris: DebrisTable, rules: Gtoc9Rules = DEFAULT_RULES) 
         _rendezvous(arrival, debris, rules, flag, arriving=True)
         if departure is not None:
             _rendezvous(departure, debris, rules, flag, arriving=False)
-    in_stay = {id(a): d for a, d in stays if d is not None}
-    for before, after in pairwise(events):
-        if in_stay.get(id(before)) is not after:
+    index = {id(e): k for k, e in enumerate(events)}
+    stay_of = {}  # event position -> its stay (from an arrival to its departure, both in)
+    for number, (arrival, departure) in enumerate(stays):
+        if departure is not None:
+            for k in range(index[id(arrival)], index[id(departure)] + 1):
+                stay_of[k] = number
+    for k, (before, after) in enumerate(pairwise(events)):  # an arc, unless co-orbiting
+        if k not in stay_of or stay_of.get(k + 1) != stay_of[k]:
             _arc(before, after, rules, flag)
     report.arrivals = [a for a, _ in stays]
     report.debris = [a.ident for a in report.arrivals]
@@ -247,8 +252,8 @@ def _sequence(events, rules, flag) -> list[tuple[Event, Event | None]]:
             flag(event, "stay", f"{what} during the stay at debris {current.ident} (arrived line "
                  f"{current.line}, no departure line yet); expected its departure (id "
                  f"{current.ident}) first")  # fmt: skip
-            current = None if event.is_dsm else event
-            if current is not None:
+            if not event.is_dsm:  # a new stay begins (the old one has no departure)
+                current = event
                 stays.append((event, None))
         elif event.is_dsm:
             if number == 0:

@@ -83,6 +83,8 @@ def test_an_impulse_during_a_stay_is_refused(tmp_path, rows):  # noqa: F811
     result = check(tmp_path)
     assert result.exit_code == 1
     assert "mission_01.txt:3: stay: an impulse (-1) during the stay at debris 5" in result.stderr
+    assert result.stderr.count("error:") == 1  # the stay is not propagated, its debris once
+    assert "debris 5;" in result.output
 
 
 def test_a_folder_without_mission_files_or_debris_file_exits_2(tmp_path, rows):  # noqa: F811
