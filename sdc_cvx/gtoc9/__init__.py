@@ -3,6 +3,7 @@
 - :mod:`.mission_file` - the competition's event format: :class:`Event`,
   :func:`write_mission_file`, :func:`read_mission_file`; :mod:`.campaign_file` - a
   campaign folder (:func:`write_campaign`: ``gtoc9/mission_NN.txt`` and ``campaign.json``);
+  :mod:`.from_flight` - a flown mission's events (:func:`flight_events`);
 - :mod:`.check` - :func:`check_folder` / :func:`check_mission`, every rule re-checked as
   the competition did (its docstring states the readings of the ambiguous ones);
 - :mod:`.rules` - GTOC9's constants (:class:`Gtoc9Rules`); :mod:`.dynamics` - its ODE;
@@ -17,6 +18,7 @@ References
 from .campaign_file import launch_mass, write_campaign
 from .check import FolderReport, MissionReport, Violation, check_folder, check_mission
 from .debris import DebrisTable, find_debris_file
+from .from_flight import flight_events
 from .mission_file import Event, read_mission_file, write_mission_file
 from .rules import Gtoc9Rules
 
@@ -30,6 +32,7 @@ __all__ = [
     "check_folder",
     "check_mission",
     "find_debris_file",
+    "flight_events",
     "launch_mass",
     "read_mission_file",
     "write_campaign",

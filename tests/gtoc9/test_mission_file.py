@@ -119,3 +119,40 @@ def test_a_campaign_folder_has_its_files_and_its_summary(tmp_path, rows, transfe
     assert f"J = {cost:.4f} MEUR" in result.output
     with pytest.raises(MissionError, match="holds 2 mission files already"):
         write_campaign(tmp_path, [second])
+
+
+def test_a_flight_in_gtoc9_frame_becomes_the_mission_it_flew(tmp_path, rows, transfer):  # noqa: F811
+    """A flight's manoeuvres and segments (the shape :func:`sdc_cvx.flight.fly` returns)
+    built from the tests' valid mission: its events are that mission's, and valid."""
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from sdc_cvx.flight.result import Maneuver
+    from sdc_cvx.gtoc9 import flight_events
+    from tests.gtoc9.test_gtoc9_check import T_ARRIVE_A, T_ARRIVE_B, T_DEPART_A
+
+    numbers = [np.array(line.split(), float) for line in mission_lines(rows, transfer)]
+    day = 86400.0
+    t_dep, t_arr, t_end = [(t - T_ARRIVE_A) * day for t in (T_DEPART_A, T_ARRIVE_B, T_DEPART_B)]
+    v_dep, r_end, v_end = transfer
+    r_a, v_a = numbers[1][1:4], numbers[1][4:7]
+    segments = [
+        ([0.0, t_dep], [numbers[0][1:4], r_a], [numbers[0][4:7], v_a]),
+        ([t_dep, t_arr], [r_a, r_end], [v_dep, v_end]),
+        ([t_arr, t_end], [r_end, numbers[3][1:4]], [v_end + numbers[2][7:10], numbers[3][4:7]]),
+    ]  # fmt: skip
+    maneuvers = [Maneuver(t_dep, 1, "depart", numbers[1][7:10], np.zeros(3)),
+                 Maneuver(t_arr, 1, "arrive", numbers[2][7:10], np.zeros(3))]  # fmt: skip
+    plan = SimpleNamespace(start=pd.Timestamp("2000-01-01", tz="UTC") + pd.Timedelta(days=23500),
+                           legs=[SimpleNamespace(from_id=str(A), to_id=str(B))])  # fmt: skip
+    flight = SimpleNamespace(plan=plan, maneuvers=maneuvers, segments=segments, frame="EME2000")
+    events = flight_events(flight)
+    assert [e.ident for e in events] == [A, A, B, B]
+    for event, expected in zip(events, numbers, strict=True):
+        assert [*event.fields(), event.ident] == pytest.approx(expected.tolist(), rel=1e-15)
+    write_mission_file(tmp_path / "mission_01.txt", events)
+    result = check(tmp_path)
+    assert result.exit_code == 0, result.stderr
+    with pytest.raises(MissionError, match="expected 'EME2000'"):
+        flight_events(SimpleNamespace(**{**vars(flight), "frame": "GCRF"}))
