@@ -74,6 +74,7 @@ API_PACKAGES = [
     "sdc_cvx.planner.certified",
     "sdc_cvx.planner.paper",
     "sdc_cvx.inputs.formats",
+    "sdc_cvx.gtoc9",
     "sdc_cvx.cli",
 ]
 """The packages whose ``__all__`` is the public API (in this order on the page)."""

@@ -30,6 +30,7 @@ RULES = {
     "study": {"planner", "inputs", "milp", "report", "solution"},
     "flight": {"physics", "inputs", "solution", "report", "study"},
     "campaign": {"planner", "inputs", "milp", "network", "physics", "solution", "study", "report"},
+    "gtoc9": {"flight", "inputs", "physics"},  # GTOC9's files and their validator
     "cli": {
         "flight",
         "physics",
@@ -41,6 +42,7 @@ RULES = {
         "study",
         "report",
         "campaign",
+        "gtoc9",
     },
     "__init__": {
         "flight",
@@ -53,6 +55,7 @@ RULES = {
         "study",
         "report",
         "campaign",
+        "gtoc9",
     },
     "__main__": {"cli"},
 }

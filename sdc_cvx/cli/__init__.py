@@ -1,7 +1,8 @@
 """Command line: ``python -m sdc_cvx`` (or ``sdc-cvx``).
 
 Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``fly RUN_DIR``, ``sweep
-STUDY.toml``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``.  Exit codes: 0 success,
+STUDY.toml``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``, ``gtoc9-check
+FOLDER`` (:mod:`.gtoc9`: exit 1 on a GTOC9 rule broken).  Exit codes: 0 success,
 2 invalid input (nothing written), 3 infeasible mission or campaign (or a flight not flown
 as planned, its files written), 4 solver failure or a full disk, 130 interrupted (Ctrl-C)
 with nothing written.
@@ -23,6 +24,7 @@ import click
 from .campaign import campaign_command
 from .exits import EXIT_CODES, INFEASIBLE, INPUT_ERROR, INTERRUPTED, SOLVER_FAILED, exit_code
 from .fly import fly_command
+from .gtoc9 import gtoc9_check_command
 from .progress import RunProgress, quiet_resource_tracker
 from .run import run_command
 from .sweep import sweep_command
@@ -68,3 +70,4 @@ main.add_command(sweep_command)
 main.add_command(edges_command)
 main.add_command(catalog_command)
 main.add_command(solvers_command)
+main.add_command(gtoc9_check_command)
