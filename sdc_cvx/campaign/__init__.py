@@ -10,8 +10,10 @@
   bound, the greedy baseline (:mod:`~sdc_cvx.campaign.greedy`) and the closing
   enumeration;
 - :mod:`~sdc_cvx.campaign.value`, :mod:`~sdc_cvx.campaign.value_bound`,
-  :mod:`~sdc_cvx.campaign.value_start`: the most valuable campaign, its bound and a
-  first campaign of high value;
+  :mod:`~sdc_cvx.campaign.value_start`, :mod:`~sdc_cvx.campaign.value_pool`: the most
+  valuable campaign, its bound, a first campaign of high value, and the programs over a
+  pool of priced missions (most value, value at a price, the value-ΔV front);
+- :mod:`~sdc_cvx.campaign.few`: missions of one debris or none (value objectives);
 - :mod:`~sdc_cvx.campaign.result`: :class:`CampaignSolution`.
 
 See ``docs/design.md`` §10.

@@ -57,15 +57,13 @@ from ..milp.types import SolverOptions
 from ..planner.nodes import MissionNodes
 from ..solution import OPTIMAL_GAP_MPS, RunStatus
 from .few import FEWEST_SEARCHED, price_counts, used_launches
-from .master import solve_ip
 from .plane_bound import campaign_plane_bound
 from .pricing import Column, Launch, Pricing, mission_solution
 from .result import CampaignSolution, GreedyCampaign, tank_status
 from .value_bound import cardinality_narrowing, counts_of, lagrangian_bound
+from .value_pool import VALUE_TOL, _priced, best_value, pareto_front
 from .value_start import high_value_start, in_catalog, shared_out
 
-VALUE_TOL = 1e-9
-"""Relative tolerance on a campaign's value when it is held while the ΔV is minimised."""
 PLAIN_SHARE = 0.15
 """Share of the time limit the plain enumeration (every mission within budget) may take
 before the Lagrangian rounds (:mod:`~sdc_cvx.campaign.value_bound`) take over."""
@@ -78,9 +76,6 @@ START_SHARE = 0.25
 FORCED_SHARE = 0.5
 """Share of the time left the min-ΔV campaign of the debris the plane-change bound forces
 may take (:func:`_forced`)."""
-TIE_MPS = 1e-7
-"""ΔV each debris adds when the least ΔV of the most value is chosen [m/s]: of equal ΔV, the
-fewest debris (a launch unused, not sent to a debris worth nothing at 0 m/s)."""
 PATH_GAP_REL = 1e-4
 """Relative tolerance of each enumerated path's schedule (undecided paths lie within it
 of their budget)."""
@@ -194,29 +189,6 @@ def _share(share: float, deadline: float) -> float:
     """The ``time.perf_counter()`` at which ``share`` of the time to ``deadline`` is gone."""
     now = time.perf_counter()
     return now + share * (deadline - now) if np.isfinite(deadline) else deadline
-
-
-def _worth(columns: list, values: np.ndarray) -> np.ndarray:
-    """The value each column (mission) removes."""
-    return np.array([values[list(c.debris)].sum() for c in columns])
-
-
-def best_value(columns: list, values: np.ndarray, launches: int, debris: int, *,
-               solver: SolverOptions, costs=None):  # fmt: skip
-    """The most valuable campaign of ``columns``, then its least ΔV: (plan, value) or
-    (None, -inf) when no campaign can be made of them.  ``costs`` (default the columns'
-    ΔV) are what the second stage minimises."""
-    worth = _worth(columns, values)
-    most = solve_ip(columns, launches, debris, solver=solver, costs=-worth)
-    if most is None:
-        return None, -np.inf
-    value = -most.value
-    hold = value - VALUE_TOL * max(1.0, abs(value))
-    if costs is None:  # of equal ΔV, the fewest debris (TIE_MPS)
-        costs = np.array([c.dv_mps + TIE_MPS * len(c.debris) for c in columns])
-    plan = solve_ip(columns, launches, debris, solver=solver, costs=costs,
-                    at_least=(worth, hold))  # fmt: skip
-    return plan, value
 
 
 def solve_max_value(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
@@ -393,56 +365,6 @@ def _forced(catalog, campaign, launches, values, plane, *, solver, gap, deadline
                 status=RunStatus.OPTIMAL, columns=len(search.pool), complete=True,
                 notes=(f"the value bound is the plane changes' ({plane.groups} groups of debris "
                        "that may share a mission)",), pool=(plan, [], values))  # fmt: skip
-
-
-def _priced(columns: list, values: np.ndarray, price: float, launches: int, debris: int,
-            solver: SolverOptions, costs=None):  # fmt: skip
-    """The campaign of ``columns`` least in ``Σ cost − price · Σ value`` (``costs``:
-    default the columns' ΔV): (plan, its value) or (None, -inf).  The plan's ``value``
-    is the priced objective [m/s]."""
-    worth = _worth(columns, values)
-    costs = np.array([c.dv_mps for c in columns]) if costs is None else np.asarray(costs)
-    plan = solve_ip(columns, launches, debris, solver=solver, costs=costs - price * worth)
-    return (None, -np.inf) if plan is None else (plan, float(worth[list(plan.chosen)].sum()))
-
-
-def pareto_front(columns: list, undecided: list, values: np.ndarray, launches: int,
-                 debris: int, points: int, *, solver: SolverOptions, proven: bool = True,
-                 proven_from: float = -np.inf) -> tuple[dict, ...]:  # fmt: skip
-    """Campaigns of value against ΔV, each the cheapest of at least a target value.
-
-    The targets run evenly from the value of the cheapest campaign to the most value
-    (``points`` of them; a campaign met twice is kept once).  Each point's ``dv_bound_mps``
-    is the same program over every path at its bound: no campaign of at least that value
-    costs less (the ε-constraint method: every point is on the front, within the bound);
-    None for every point unless ``proven`` (the enumeration of the missions within budget
-    was complete: else a mission it missed might make a campaign cheaper), and None for a
-    target below ``proven_from`` (the narrowed enumeration holds every mission of a
-    campaign worth at least that value, not the missions of a cheaper, less valuable one).
-    """
-    everything = columns + undecided
-    worth = _worth(columns, values)
-    worth_all = _worth(everything, values)
-    lows = np.array([c.lower_mps for c in everything])
-    cheapest = solve_ip(columns, launches, debris, solver=solver)
-    _, most = best_value(columns, values, launches, debris, solver=solver)
-    if cheapest is None:
-        return ()
-    least = float(worth[list(cheapest.chosen)].sum())
-    rows, seen = [], set()
-    for target in np.linspace(least, most, max(points, 2)):
-        hold = target - VALUE_TOL * max(1.0, abs(target))
-        plan = solve_ip(columns, launches, debris, solver=solver, at_least=(worth, hold))
-        covered = proven and target >= proven_from - VALUE_TOL * max(1.0, abs(proven_from))
-        floor = None if not covered else solve_ip(everything, launches, debris, solver=solver,
-                                                  costs=lows, at_least=(worth_all, hold))
-        if plan is None or plan.chosen in seen:
-            continue
-        seen.add(plan.chosen)
-        rows.append(dict(target_value=float(target), value=float(worth[list(plan.chosen)].sum()),
-                         dv_mps=plan.value, dv_bound_mps=None if floor is None else floor.value,
-                         missions=[columns[c].nodes for c in plan.chosen]))  # fmt: skip
-    return tuple(rows)
 
 
 def value_campaign(catalog: Catalog, campaign: Campaign, *, solver: SolverOptions, gap: float,
