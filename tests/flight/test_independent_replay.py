@@ -8,8 +8,10 @@ of sdc_cvx): the leg flown open-loop from the debris through the impulses of
 ``maneuvers.csv`` meets the next debris within issue 46's 100 m and 0.1 m/s, and stays on
 the OEM's states; the impulses add up to ``flight.json``'s total, within 1.03 times the plan.
 
-Seen to fail: with the package's J2 0.1 % off (``ForceModel.named("j2")``) the leg missed
-by ... m; with its pole the GCRF z axis instead of the pole of date, ... m.
+Seen to fail: with the package's J2 0.1 % off (``ForceModel.j2`` 1.0837e-3 in a copy of the
+tree) the package still met its debris in its own world, the replay missed it by 20.6 km
+and 22 m/s (the package's own misses: metres and mm/s here, from the 31 mas between its
+IAU 1976/1980 pole of date and skyfield's IAU 2006/2000A one).
 """
 
 import json
