@@ -5,15 +5,25 @@ files (``solution.json``, ``scenario.toml``, ``flight/maneuvers.csv``, ``rendezv
 ``flight.json``, ``trajectory.oem``) and the catalog, and with the physics of
 ``benchmarks/replay_physics.py`` (none of sdc_cvx's):
 
-(a) re-integrates the vehicle from the OEM's first state by two-body + J2 (DOP853,
-    rtol 1e-12), applying each impulse of ``maneuvers.csv`` (its GCRF / GTOC9-frame vector)
-    at its epoch, and compares it with every OEM state (worst position and velocity);
+(a) re-integrates the vehicle by two-body + J2 (DOP853, rtol 1e-12), applying each
+    impulse of ``maneuvers.csv`` (its x-y-z vector) at its epoch: each OEM arc from its own
+    first state (worst difference at its end; the velocity jumps between segments against
+    the impulses), and each leg flown open-loop from the debris at the leg's start against
+    every OEM state of the leg (worst position and velocity);
 (b) meets each rendezvous of ``rendezvous.csv`` with the debris computed here (SGP4 of the
-    TLE, TEME -> GCRS by skyfield; GTOC9's ephemeris from its equations page): the
-    re-integrated vehicle's miss and the OEM's own;
+    TLE, TEME -> GCRS by skyfield; GTOC9's ephemeris from its equations page): the miss of
+    the OEM's state, of each leg flown open-loop (and the ΔV a last correction, three
+    quarters of an orbit before the arrival, adds to meet it exactly), of the whole flight
+    flown open-loop from the OEM's first state, and of each leg about the moving pole;
 (c) adds the impulses' ``|dv|`` against ``flight.json``'s flown total and the plan's
     (``solution.json``), leg by leg; the ratio against issue 46's goals (flown at most 1.03
     times the plan for rocket bodies, 1.05 for GTOC9, 1.10 for any other).
+
+An open-loop replay of months is ill-conditioned (1 m of semi-major axis is ~12 km along
+the track after 100 days): the flight's impulses come from a closed loop in the package's
+model, so its small differences from this one (the pole of date: ~31 mas between the
+package's IAU 1976/1980 and skyfield's IAU 2006/2000A) grow into the open-loop misses;
+the last correction says what they cost.
 
 The pole J2 acts about is read from the OEM's header: ``GCRF`` is the Earth's true pole of
 date (TEME's z axis), which the package holds constant over each leg at the leg's middle
