@@ -11,6 +11,7 @@ Markers (registered in ``pyproject.toml``):
 * ``requires_backend(name)``: skipped unless CVXPY can call the MILP backend ``name``.
 """
 
+import functools
 from pathlib import Path
 
 import pytest
@@ -49,19 +50,24 @@ def shared_file(relative: str) -> Path:
     return path
 
 
-def pytest_collection_modifyitems(config, items):
-    """Keep on one worker the tests of a module that share a module-scoped fixture: under
-    ``-n 2`` (``--dist loadgroup``, pyproject.toml) each worker would otherwise compute
-    the fixture again (a flight or a planned run, tens of seconds each)."""
-    for item in items:
-        info = getattr(item, "_fixtureinfo", None)
-        if info is None:
-            continue
-        shared = any(definition.scope == "module"
-                     for definitions in info.name2fixturedefs.values()
-                     for definition in definitions)  # fmt: skip
-        if shared:
-            item.add_marker(pytest.mark.xdist_group(item.module.__name__))
+def computed_once(fixture):
+    """Decorate a module fixture (under ``@pytest.fixture(scope="module")``) so that it is
+    computed once per test process.
+
+    Under ``-n 2`` a worker runs a module's tests among other modules' and tears a module
+    fixture down each time it leaves the module: a fixture that plans or flies a mission
+    (tens of seconds) was computed again each time it came back.  Only for fixtures
+    without teardown and parameters, whose value the tests read and do not change.
+    """
+    cache: dict = {}
+
+    @functools.wraps(fixture)
+    def once(*args, **kwargs):
+        if "value" not in cache:
+            cache["value"] = fixture(*args, **kwargs)
+        return cache["value"]
+
+    return once
 
 
 def pytest_runtest_setup(item):

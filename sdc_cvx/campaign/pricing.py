@@ -61,10 +61,16 @@ class Launch:
 
     @classmethod
     def all_of(cls, campaign, catalog: Catalog) -> list[Launch]:
-        """Every launch of ``campaign`` over ``catalog`` (RAANs carried to each day)."""
-        return [cls(k, float(day), mission, catalog.advanced(day, j2=mission.j2))
-                for k, (day, mission) in enumerate(zip(campaign.launch_days, campaign.missions,
-                                                       strict=True))]  # fmt: skip
+        """Every launch of ``campaign`` over ``catalog`` (RAANs carried to each day), each
+        mission with its catalog's defaults set (:meth:`Mission.for_catalog`: the
+        eccentricity priced where the catalog gives the argument of perigee, legs the flight
+        can phase), as a single mission's ``solve`` sets them."""
+        launches = []
+        for k, (day, mission) in enumerate(zip(campaign.launch_days, campaign.missions,
+                                               strict=True)):  # fmt: skip
+            advanced = catalog.advanced(day, j2=mission.j2)
+            launches.append(cls(k, float(day), mission.for_catalog(advanced), advanced))
+        return launches
 
     def label(self) -> str:
         return f"mission {self.index + 1} (launch day {self.day:g})"

@@ -10,7 +10,7 @@ import shutil
 import pandas as pd
 import pytest
 
-from tests.conftest import EXAMPLES, PAPER_CSV, shared_file
+from tests.conftest import EXAMPLES, PAPER_CSV, computed_once, shared_file
 from tests.test_cli import cli_process
 
 TLE = "sso_rocket_bodies_2020/sso_rb.tle"
@@ -58,6 +58,7 @@ def assert_no_flight(folder):
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def paper_run(tmp_path_factory):
     """A run folder of the bundled paper case (Table 5: no epochs, no phases)."""
     folder = tmp_path_factory.mktemp("paper") / "run"

@@ -18,7 +18,7 @@ import subprocess
 
 import pytest
 
-from tests.conftest import shared_file
+from tests.conftest import computed_once, shared_file
 from tests.test_cli import cli_process
 
 TLE = "sso_rocket_bodies_2020/sso_rb.tle"
@@ -26,6 +26,7 @@ pytestmark = [pytest.mark.slow, pytest.mark.requires_shared_data(TLE)]
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def planned(tmp_path_factory):
     """A run folder of a small plan (2 debris, 60 days), not flown."""
     folder = tmp_path_factory.mktemp("fly_folders") / "run"

@@ -24,7 +24,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from sdc_cvx.flight.frames import earth_pole_gcrf
-from tests.conftest import shared_file
+from tests.conftest import computed_once, shared_file
 from tests.test_cli import cli_process
 
 TLE = "sso_rocket_bodies_2020/sso_rb.tle"
@@ -54,6 +54,7 @@ DV_GCRF = ["dv_x_mps", "dv_y_mps", "dv_z_mps"]
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def flown(tmp_path_factory):
     """A run folder of the SSO scenario, flown: ``run`` then ``fly``, real processes."""
     tle = shared_file(TLE)
@@ -138,6 +139,7 @@ def leg_poles(solution, rendezvous, start: pd.Timestamp) -> list[np.ndarray]:
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def replay(flown):
     """The vehicle replayed from the OEM's first state through every impulse: its state
     at each rendezvous epoch (after the impulses at that epoch) and at each impulse epoch

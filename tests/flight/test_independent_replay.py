@@ -19,7 +19,7 @@ import json
 import numpy as np
 import pytest
 
-from tests.conftest import shared_file
+from tests.conftest import computed_once, shared_file
 from tests.test_cli import cli_process
 
 TLE = "sso_rocket_bodies_2020/sso_rb.tle"
@@ -35,6 +35,7 @@ tmax_days = 12
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def flown(tmp_path_factory):
     """The folder flown, read by the independent replay (``load``)."""
     pytest.importorskip("skyfield.api", reason="the replay's TEME -> GCRS (pip install skyfield)")

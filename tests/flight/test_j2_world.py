@@ -21,6 +21,7 @@ from sdc_cvx.flight.propagation import ForceModel, propagate
 from sdc_cvx.flight.rates import SAMPLES, mean_state
 from sdc_cvx.physics.elements import elements_to_state
 from sdc_cvx.report.out_folder import FLIGHT_FILES
+from tests.conftest import computed_once
 
 pytestmark = pytest.mark.slow
 START = pd.Timestamp("2021-03-01T00:00:00Z")
@@ -67,6 +68,7 @@ class J2World:
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def world_and_plan():
     basis = equatorial_basis(earth_pole_gcrf(pd.DatetimeIndex([START]))[0])
     # three debris near 800 km, sun-synchronous inclinations, RAANs a few degrees apart
@@ -93,6 +95,7 @@ def world_and_plan():
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def flown(world_and_plan):
     """The plan flown among the J2 debris with the measured rates (the default), once for
     the tests that read it."""

@@ -20,7 +20,7 @@ from sdc_cvx.inputs.selection import select
 from sdc_cvx.network.edges import node_orbits
 from sdc_cvx.physics.orbits import J2, MU_EARTH, R_EARTH
 from sdc_cvx.study.scenario import Scenario, load
-from tests.conftest import shared_file
+from tests.conftest import computed_once, shared_file
 from tests.flight.test_ephemeris import tle_lines
 from tests.test_cli import cli_process
 
@@ -31,6 +31,7 @@ JD_1949_12_31 = 2433281.5
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def rocket_bodies():
     return read_tle(shared_file(SSO_TLE))
 

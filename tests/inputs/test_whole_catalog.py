@@ -23,7 +23,7 @@ from sdc_cvx.inputs.catalog import Catalog, CatalogError
 from sdc_cvx.inputs.clusters import find_clusters, raan_spread_deg
 from sdc_cvx.inputs.formats import read_catalog, read_tle
 from sdc_cvx.inputs.selection import object_type, select
-from tests.conftest import shared_file
+from tests.conftest import computed_once, shared_file
 
 WHOLE = "catalog_2020/all_2020.tle"
 ISS = "25544"
@@ -45,11 +45,13 @@ def element_sets(path: Path) -> dict[str, tuple[str, str, str]]:
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def whole_sets() -> dict[str, tuple[str, str, str]]:
     return element_sets(shared_file(WHOLE))
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def sl16_ids(whole_sets) -> list[str]:
     """The SL-16 rocket bodies at 71 deg, by hand: name, inclination, mean motion."""
     return [

@@ -46,18 +46,24 @@ def alive(pid: int) -> bool:
     return state != "Z"
 
 
-@pytest.mark.slow
-def test_sigkill_of_the_sweep_leaves_no_worker(tmp_path):
+def start_sweep(tmp_path, output) -> subprocess.Popen:
+    """A sweep of twelve paper-case scenarios on two workers, its stdout and stderr to
+    ``output`` (``subprocess.DEVNULL`` or ``PIPE``)."""
     study = tmp_path / "study.toml"
     study.write_text(
         f'base = "{EXAMPLES / "paper.toml"}"\n[grid]\n'
         '"mission.tmax_days" = [300, 330, 365.25, 400, 450, 500]\n"mission.n" = [5, 6]\n'
     )
-    sweep = subprocess.Popen(
+    return subprocess.Popen(
         [sys.executable, "-m", "sdc_cvx", "sweep", str(study), "--out", str(tmp_path / "out"),
          "--workers", "2"],
-        cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        cwd=REPO, stdout=output, stderr=output,
     )  # fmt: skip
+
+
+@pytest.mark.slow
+def test_sigkill_of_the_sweep_leaves_no_worker(tmp_path):
+    sweep = start_sweep(tmp_path, subprocess.DEVNULL)
     try:
         deadline = time.monotonic() + 60
         workers: set[int] = set()
@@ -87,16 +93,7 @@ def test_a_killed_sweep_not_yet_reaped_leaves_its_launchers_pipes_closed(tmp_pat
     (``stdout=PIPE``, then ``communicate()``) keeps the killed sweep a zombie; the workers
     took it for alive, and they, the fork server and the resource tracker held the pipes
     open for 30-80 s: ``communicate()`` did not return."""
-    study = tmp_path / "study.toml"
-    study.write_text(
-        f'base = "{EXAMPLES / "paper.toml"}"\n[grid]\n'
-        '"mission.tmax_days" = [300, 330, 365.25, 400, 450, 500]\n"mission.n" = [5, 6]\n'
-    )
-    sweep = subprocess.Popen(
-        [sys.executable, "-m", "sdc_cvx", "sweep", str(study), "--out", str(tmp_path / "out"),
-         "--workers", "2"],
-        cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-    )  # fmt: skip
+    sweep = start_sweep(tmp_path, subprocess.PIPE)
     family: set[int] = set()
     try:
         deadline = time.monotonic() + 20

@@ -27,7 +27,7 @@ from sdc_cvx.study.runner import (
     sweep,
 )
 from sdc_cvx.study.scenario import Scenario, ScenarioError
-from tests.conftest import EXAMPLES, REPO, as_terminal_job
+from tests.conftest import EXAMPLES, REPO, as_terminal_job, computed_once
 
 pytestmark = pytest.mark.slow  # solves many missions (see tests/conftest.py)
 
@@ -47,6 +47,7 @@ KEYS = 5  # 2 x 2 grid + 1 case
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def study_file(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("study")
     # the sweep machinery is under test, not the method: the paper's is the quicker here
@@ -57,6 +58,7 @@ def study_file(tmp_path_factory) -> Path:
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def reference(study_file, tmp_path_factory) -> pd.DataFrame:
     """The study solved without interruption on the local process pool."""
     out = tmp_path_factory.mktemp("reference")

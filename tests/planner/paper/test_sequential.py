@@ -12,6 +12,7 @@ from sdc_cvx.inputs.synthetic import sso_catalog
 from sdc_cvx.physics.orbits import SECONDS_PER_DAY
 from sdc_cvx.physics.transfer import NodeOrbits, transfer_duration, transfer_dv
 from sdc_cvx.planner.paper import SequentialSettings, solve
+from tests.conftest import computed_once
 
 # Table 7 of the paper: iteration, path, dV [m/s], duration [days]
 TABLE_7 = [
@@ -26,6 +27,7 @@ TABLE_7 = [
 
 
 @pytest.fixture(scope="module")
+@computed_once
 def paper_solution():
     return solve()
 
