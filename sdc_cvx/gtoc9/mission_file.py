@@ -77,7 +77,7 @@ def format_event(event: Event) -> str:
 def write_mission_file(path: str | os.PathLike, events, *, comment: str | None = None) -> Path:
     """Write ``events`` (:class:`Event`, in time order) as a GTOC9 mission file.
 
-    ``comment`` (lines of text) goes first, each line prefixed with ``# ``; the header
+    ``comment`` (lines of text) goes first, each line prefixed with ``"# "``; the header
     line naming the fields follows.  Returns the path written.
     """
     path = Path(path)
