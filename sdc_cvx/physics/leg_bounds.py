@@ -35,12 +35,13 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
 from . import eccentricity
 from .leg_minima import scanned_minimisers
+from .model_protocol import TransferModel
 from .orbits import MU_EARTH, SECONDS_PER_DAY, circular_a_for_raan_rate, raan_rate
 from .transfer import (
     CLOSED_GAP_RAD,
@@ -53,12 +54,8 @@ from .transfer import (
     transfer_dv,
 )
 
-if TYPE_CHECKING:  # the models module imports this one
-    from .models import TransferModel
-
 TWO_PI = 2.0 * np.pi
 INCLINATION_RULES = ("table3", "free")
-
 
 
 @dataclass(frozen=True)
@@ -404,7 +401,7 @@ def crossing_dates(legs: LegCosts, e: int, start: float, stop: float) -> np.ndar
 class ImpulsiveModel:
     """The paper's impulsive drift leg (Part III): Hohmann, coast, Hohmann.
 
-    A transfer model (:class:`~sdc_cvx.physics.models.TransferModel`): the leg's cost
+    A transfer model (:class:`~sdc_cvx.physics.model_protocol.TransferModel`): the leg's cost
     and duration (:mod:`~sdc_cvx.physics.transfer`), its exact cost between two dates
     and its bound over a box of dates (this module), the dates a schedule may need
     exactly (RAAN crossings: zero-length legs) and the pre-optimised transfer (Part IV-B).
