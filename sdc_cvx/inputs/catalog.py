@@ -399,7 +399,7 @@ class Catalog:
             The rates are fitted already (fit the catalog as read), or ``days`` is not
             longer than two orbital periods.
         """
-        from .sgp4_rates import sgp4_raan  # a layer below: its module imports no catalog
+        from .sgp4_rates import sgp4_raan  # sgp4 only when asked; it imports no catalog
 
         if self.start is None:
             raise CatalogError(

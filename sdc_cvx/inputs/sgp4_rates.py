@@ -36,18 +36,13 @@ References
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 import pandas as pd
 from sgp4.api import SGP4_ERRORS
 
 from ..errors import CatalogError
 from ..physics.orbits import raan_rate
-from .sgp4_sets import NOMINAL_EPOCH, satrecs
-
-if TYPE_CHECKING:
-    from .catalog import Catalog
+from .sgp4_sets import NOMINAL_EPOCH, CatalogRows, satrecs
 
 __all__ = ["SAMPLES", "sgp4_raan"]
 
@@ -57,7 +52,7 @@ the 31st average out; SGP4's short-period node terms are of order 2)."""
 _MINUTES_PER_DAY = 1440.0
 
 
-def sgp4_raan(catalog: Catalog, days: float) -> tuple[np.ndarray, np.ndarray]:
+def sgp4_raan(catalog: CatalogRows, days: float) -> tuple[np.ndarray, np.ndarray]:
     """Each debris' RAAN at the start and its RAAN rate, fitted to SGP4 (module docstring).
 
     Parameters

@@ -1,7 +1,9 @@
 """One SGP4 element set per catalog row: the debris as SGP4 propagates them (issue 26).
 
 :func:`satrecs` builds one ``sgp4.api.Satrec`` (WGS72, opsmode ``'i'``, initialised by
-``sgp4init``) per row of a :class:`~sdc_cvx.inputs.catalog.Catalog`.  The flight replay
+``sgp4init``) per row of a :class:`~sdc_cvx.inputs.catalog.Catalog` (what it reads of
+one: :class:`CatalogRows`, so that the catalog, which fits its rates through this module,
+is not imported back).  The flight replay
 (:class:`sdc_cvx.flight.ephemeris.DebrisEphemeris`, which adds the TEME to GCRF rotation)
 and the RAAN rates fitted to SGP4 (:mod:`sdc_cvx.inputs.sgp4_rates`) both fly these.
 
@@ -39,7 +41,7 @@ References
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, NamedTuple
+from typing import NamedTuple, Protocol
 
 import numpy as np
 import pandas as pd
@@ -48,11 +50,8 @@ from sgp4.api import SGP4_ERRORS, WGS72, Satrec
 from ..errors import CatalogError
 from ..physics.orbits import MU_EARTH, SECONDS_PER_DAY
 
-if TYPE_CHECKING:  # the catalog fits its rates with this module: no import back
-    from .catalog import Catalog
-
-__all__ = ["NOMINAL_EPOCH", "ElementSets", "brouwer_a_km", "kozai_for_brouwer_a", "numbers",
-           "phase_known", "row_epochs", "satrecs", "without_phase"]  # fmt: skip
+__all__ = ["NOMINAL_EPOCH", "CatalogRows", "ElementSets", "brouwer_a_km", "kozai_for_brouwer_a",
+           "numbers", "phase_known", "row_epochs", "satrecs", "without_phase"]  # fmt: skip
 
 NOMINAL_EPOCH = pd.Timestamp("2000-01-01T12:00:00Z")
 """Epoch of the element sets of a catalog without epochs nor start (``phase_needed=False``)."""
@@ -65,6 +64,24 @@ _A_TOLERANCE_M = 1e-6
 _MAX_ITERATIONS = 20
 _SHOWN_IDS = 5
 """Ids named by :func:`without_phase`."""
+
+
+class CatalogRows(Protocol):
+    """What the element sets are built from: a :class:`~sdc_cvx.inputs.catalog.Catalog`
+    (its rows, start and source; the elements in SI units)."""
+
+    @property
+    def frame(self) -> pd.DataFrame: ...
+    @property
+    def start(self) -> pd.Timestamp | None: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def a_m(self) -> np.ndarray: ...
+    @property
+    def e(self) -> np.ndarray: ...
+    @property
+    def inc_rad(self) -> np.ndarray: ...
 
 
 class ElementSets(NamedTuple):
@@ -109,7 +126,7 @@ def numbers(frame: pd.DataFrame, column: str) -> np.ndarray:
     return pd.to_numeric(frame[column], errors="coerce").to_numpy(dtype=float)
 
 
-def row_epochs(catalog: Catalog) -> pd.DatetimeIndex | None:
+def row_epochs(catalog: CatalogRows) -> pd.DatetimeIndex | None:
     """Each row's epoch (UTC), the catalog's start where a row has none; None if neither."""
     frame = catalog.frame
     if "epoch" in frame.columns:
@@ -193,7 +210,7 @@ def kozai_for_brouwer_a(a_m: float, init) -> tuple[Satrec, int]:
     return s1, calls
 
 
-def satrecs(catalog: Catalog, *, phase_needed: bool = True) -> ElementSets:
+def satrecs(catalog: CatalogRows, *, phase_needed: bool = True) -> ElementSets:
     """One SGP4 element set per row of ``catalog`` (module docstring).
 
     Parameters
