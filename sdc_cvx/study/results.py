@@ -16,7 +16,6 @@ from ..report.run_folder import CSV_FLOAT_FORMAT
 from ..solution import RunStatus
 
 if TYPE_CHECKING:
-    from .runner import _Planned
     from .study import Study
 
 
@@ -102,8 +101,9 @@ def _columns(study: Study) -> list[str]:
     return ["key", "label", *study.parameters, *RESULT_COLUMNS, "scenario_sha"]
 
 
-def _results_text(study: Study, planned: Sequence[_Planned], rows: Mapping[str, dict]) -> str:
-    table = [rows[p.item.key] for p in planned if p.item.key in rows]
+def _results_text(study: Study, keys: Sequence[str], rows: Mapping[str, dict]) -> str:
+    """``results.csv``: the rows of the scenarios run so far, in the order of ``keys``."""
+    table = [rows[key] for key in keys if key in rows]
     frame = pd.DataFrame(table, columns=_columns(study))
     for column in frame.select_dtypes("float").columns:  # 10 significant digits, as every
         frame[column] = [float(CSV_FLOAT_FORMAT % v) for v in frame[column]]  # CSV of sdc_cvx

@@ -177,7 +177,7 @@ def run_study(
     with _locked(out):
         rows = _previous_rows(out, study, planned, resume)
         _write_inputs(out, study, planned)
-        write_atomic(out / "results.csv", _results_text(study, planned, rows))
+        write_atomic(out / "results.csv", _results_text(study, [p.item.key for p in planned], rows))
         pending = [p for p in planned if p.item.key not in rows]
         report = _reporter(progress, len(planned), out)
         report(rows, None, started=True, running=len(pending))
@@ -388,7 +388,7 @@ def _record(out: Path, study: Study, planned, plan: _Planned, result: Mapping, r
     row.update({c: result.get(c) for c in RESULT_COLUMNS})
     row["scenario_sha"] = plan.sha
     rows[plan.item.key] = row
-    write_atomic(out / "results.csv", _results_text(study, planned, rows))
+    write_atomic(out / "results.csv", _results_text(study, [p.item.key for p in planned], rows))
 
 
 def _reporter(progress, total: int, out: Path):
