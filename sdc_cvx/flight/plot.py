@@ -1,24 +1,53 @@
-"""``flight.png``: what the replay found, per leg, and the altitude flown against the plan's."""
+"""``flight.png``: what the replay found, per leg, and the altitude flown against the plan's.
+
+The figure reads a flight through :class:`Flown`, what it draws of one: a
+:class:`~sdc_cvx.flight.result.Flight` is one, and its ``save`` calls
+:func:`flight_figure` (this module does not import the result's: no circle).
+"""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from matplotlib.figure import Figure
 
 from ..physics.orbits import SECONDS_PER_DAY
 from ..report.atomic import write_figure
-from .plan import miss_text
-
-if TYPE_CHECKING:
-    from .result import Flight
+from .plan import FlightPlan, miss_text
+from .propagation import ForceModel
 
 FIGURE_SIZE = (9.0, 9.0)
 
 
-def plan_altitude(flight: Flight) -> tuple[np.ndarray, np.ndarray]:
+class Meeting(Protocol):
+    """What the figure draws of a rendezvous (:class:`~sdc_cvx.flight.result.Rendezvous`)."""
+
+    epoch_s: float
+    target: str
+    miss_km: float
+    phasing_dv_mps: float
+    correction_dv_mps: float
+
+
+class Flown(Protocol):
+    """What the figure draws of a flight (:class:`~sdc_cvx.flight.result.Flight`)."""
+
+    plan: FlightPlan
+    force: ForceModel
+    rendezvous: Sequence[Meeting]
+    status: str
+    flown_dv_mps: float
+    planned_dv_flown_mps: float
+    complete: bool
+    worst_miss_km: float
+
+    def altitude_profile(self) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+def plan_altitude(flight: Flown) -> tuple[np.ndarray, np.ndarray]:
     """The plan's altitude [km] against days: at each debris, then on each drift orbit
     (impulsive transfers drawn as instants, as the model has them; a low-thrust plan's
     spirals as the straight ramps of their durations, ``|V(a) - V(a_d)| / f``)."""
@@ -53,12 +82,12 @@ def _orbit_means(days, altitude, period_days=100.0 / 1440.0):
     return (edges[kept] + 0.5 * period_days), sums[kept] / counts[kept]
 
 
-def flight_figure(flight: Flight, path: Path, dpi: int = 110) -> None:
+def flight_figure(flight: Flown, path: Path, dpi: int = 110) -> None:
     """Write ``flight.png`` (:func:`flight_plot`)."""
     write_figure(flight_plot(flight), Path(path), "png", dpi)
 
 
-def flight_plot(flight: Flight) -> Figure:
+def flight_plot(flight: Flown) -> Figure:
     """``flight.png``'s figure: ΔV per leg (top), the miss at each rendezvous (middle),
     altitudes (bottom).  The misses have a panel of their own: on a second axis of the
     ΔV panel their zero sat at the bottom, below the ΔV's zero whenever a leg's ΔV was
