@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib.figure import Figure
 
+from .plan_record import DrawnLeg, DrawnPlan
 from .plot_common import (
     _AFTER_COLOR,
     _BEFORE_COLOR,
@@ -19,11 +19,8 @@ from .plot_common import (
     _path_name,
 )
 
-if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
-    from ..solution import Leg, Solution
 
-
-def plot_cost(solution: Solution) -> Figure:
+def plot_cost(solution: DrawnPlan) -> Figure:
     """ΔV per leg, and before the optimisation when there was a before: the paper's Fig. 19.
 
     Bars per leg index 1..n-1: ``solution.legs`` (the plan), and beside them
@@ -139,7 +136,7 @@ def _short(text: str, width: int = 44) -> str:
     return text if len(text) <= width else text[: width - 1] + "\u2026"
 
 
-def _operations_per_leg(solution: Solution) -> list[float] | None:
+def _operations_per_leg(solution: DrawnPlan) -> list[float] | None:
     """Operations ΔV carried by each leg (at its arrival debris; the first leg also those
     at the first debris), as in ``legs.csv``; None when there are none."""
     if not solution.operations_dv_mps or not solution.legs:
@@ -150,5 +147,5 @@ def _operations_per_leg(solution: Solution) -> list[float] | None:
     return out
 
 
-def _legs_path(legs: Sequence[Leg]) -> list[str]:
+def _legs_path(legs: Sequence[DrawnLeg]) -> list[str]:
     return [legs[0].from_id, *(leg.to_id for leg in legs)] if legs else []

@@ -3,12 +3,11 @@ method's iterations (its Table 7)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
+from .plan_record import DrawnPlan
 from .plot_common import (
     _AFTER_COLOR,
     _LABEL_SIZE,
@@ -20,11 +19,8 @@ from .plot_common import (
     _path_name,
 )
 
-if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
-    from ..solution import Solution
 
-
-def _plot_certified_search(solution: Solution) -> Figure:
+def _plot_certified_search(solution: DrawnPlan) -> Figure:
     """The certified search over time: the proven lower bound and the best plan, and the
     gap between them.
 
@@ -94,7 +90,7 @@ def _plot_certified_search(solution: Solution) -> Figure:
     return fig
 
 
-def plot_iterations(solution: Solution) -> Figure:
+def plot_iterations(solution: DrawnPlan) -> Figure:
     """The sequential linearisation's history: the paper's Table 7 as a picture.
 
     Left axis: linearised and true ΔV [m/s] of each iteration's plan; right axis

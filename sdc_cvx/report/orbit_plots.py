@@ -7,8 +7,6 @@ catalog's rates fitted to SGP4), so the plotted RAAN gaps close exactly at each 
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -18,6 +16,7 @@ from ..network.edges import node_orbits
 from ..physics.low_thrust import plane_change_raan_change, spiral_raan_change
 from ..physics.orbits import R_EARTH, SECONDS_PER_DAY
 from ..physics.transfer import NodeOrbits, drift_rate
+from .plan_record import DrawnPlan
 from .plot_common import (
     _DEBRIS_COLOR,
     _LABEL_SIZE,
@@ -37,11 +36,8 @@ from .plot_common import (
     _wrap_deg,
 )
 
-if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
-    from ..solution import Solution
 
-
-def vehicle_altitude(solution: Solution, catalog: Catalog) -> tuple[np.ndarray, np.ndarray]:
+def vehicle_altitude(solution: DrawnPlan, catalog: Catalog) -> tuple[np.ndarray, np.ndarray]:
     """Altitude of the vehicle over the mission, as the corners of a step line.
 
     Parameters
@@ -88,7 +84,7 @@ def _spiral(start, length, alt_from, alt_to, points=12):
     return list(start + np.linspace(0.0, length, points)), list(1.0 / v**2 - R_EARTH / 1e3)
 
 
-def _vehicle_raan_turned(solution: Solution, leg, orbits: NodeOrbits, origin: int, target: int,
+def _vehicle_raan_turned(solution: DrawnPlan, leg, orbits: NodeOrbits, origin: int, target: int,
                          elapsed, rate_drift):  # fmt: skip
     """RAAN [deg] the vehicle has turned ``elapsed`` days into ``leg``: the drift rate times
     the time for an impulsive leg; for a low-thrust leg, each phase's own turn (spirals,
@@ -117,7 +113,7 @@ def _vehicle_raan_turned(solution: Solution, leg, orbits: NodeOrbits, origin: in
 
 
 def raan_gap_history(
-    solution: Solution, catalog: Catalog, samples: int = _RAAN_SAMPLES
+    solution: DrawnPlan, catalog: Catalog, samples: int = _RAAN_SAMPLES
 ) -> list[tuple[np.ndarray, np.ndarray]]:
     """RAAN of the vehicle minus RAAN of its next target during each leg (paper Fig. 18).
 
@@ -160,7 +156,7 @@ def raan_gap_history(
 
 
 # ---------------------------------------------------------------------- Fig. 17
-def plot_orbits(solution: Solution, catalog: Catalog) -> Figure:
+def plot_orbits(solution: DrawnPlan, catalog: Catalog) -> Figure:
     """Altitude of the vehicle over the mission: the paper's Fig. 17 ("optimal path orbits").
 
     A step line (gid ``"vehicle"``) at the debris altitude while the vehicle is at a
@@ -337,7 +333,7 @@ def _label_debris_lines(ax, debris_alts: dict[str, float]) -> None:
 
 
 # ---------------------------------------------------------------------- Fig. 18
-def plot_raan(solution: Solution, catalog: Catalog) -> Figure:
+def plot_raan(solution: DrawnPlan, catalog: Catalog) -> Figure:
     """RAAN correction during each leg: the paper's Fig. 18.
 
     For leg k (line gid ``"raan-leg-k"``, k from 1, labelled ``5→8``): RAAN of the

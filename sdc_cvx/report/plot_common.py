@@ -4,7 +4,6 @@ paths, wrapped angles, and where a solution's debris and days are in its catalog
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
 
 import numpy as np
 from matplotlib import colormaps
@@ -13,9 +12,7 @@ from matplotlib.figure import Figure
 from ..errors import listing
 from ..inputs.catalog import Catalog
 from ..physics.orbits import R_EARTH
-
-if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
-    from ..solution import Leg, Solution
+from .plan_record import DrawnLeg, DrawnPlan
 
 FIGURE_SIZE = (8.0, 4.5)
 """Size of every figure [inch]: readable at report width."""
@@ -47,7 +44,7 @@ def _leg_color(k: int):
     return colormaps["tab10"](k % 10)
 
 
-def _leg_name(leg: Leg) -> str:
+def _leg_name(leg: DrawnLeg) -> str:
     return f"{leg.from_id}{ARROW}{leg.to_id}"
 
 
@@ -67,7 +64,7 @@ def _break_wraps(values: np.ndarray) -> np.ndarray:
     return np.insert(values, jumps + 1, np.nan) if jumps.size else values
 
 
-def _positions(solution: Solution, catalog: Catalog) -> dict[str, int]:
+def _positions(solution: DrawnPlan, catalog: Catalog) -> dict[str, int]:
     """Catalog position of every debris of the solution's path and legs."""
     index = {debris: pos for pos, debris in enumerate(catalog.ids)}
     wanted = list(solution.path)
@@ -86,7 +83,7 @@ def _altitudes_km(catalog: Catalog) -> np.ndarray:
     return (catalog.a_m - R_EARTH) / 1000.0
 
 
-def _end_day(solution: Solution) -> float:
+def _end_day(solution: DrawnPlan) -> float:
     """End of the mission [days]: last arrival plus the operations there."""
     if not solution.legs:
         return float(solution.mission.deorbit_days)

@@ -4,7 +4,7 @@ Every function returns a :class:`matplotlib.figure.Figure` built with the
 object-oriented API only (no pyplot, no global state), so it works headless and
 in threads; :func:`save_figures` writes them all atomically.
 
-The mission timeline drawn here is the one of :func:`~sdc_cvx.solution.evaluate_plan`:
+The mission timeline drawn here is the one of :func:`~sdc_cvx.physics.plan.evaluate_plan`:
 the vehicle is at the first debris at t = 0; leg k leaves at ``departure_day``, makes a
 Hohmann transfer (instantaneous at this scale) to its circular drift orbit
 (``drift_alt_km``, ``drift_inc_deg``), coasts ``duration_days`` while J2 turns its RAAN at
@@ -17,7 +17,9 @@ close exactly at each arrival.
 
 The figures are drawn in :mod:`~sdc_cvx.report.orbit_plots` (Figs. 17, 18),
 :mod:`~sdc_cvx.report.cost_plot` (Fig. 19) and :mod:`~sdc_cvx.report.iterations_plot`
-(Table 7), with what they share in :mod:`~sdc_cvx.report.plot_common`.
+(Table 7), with what they share in :mod:`~sdc_cvx.report.plot_common`.  They read a plan
+through :class:`~sdc_cvx.report.plan_record.DrawnPlan` (a
+:class:`~sdc_cvx.solution.Solution` is one), so that ``Solution.plot`` may call them.
 """
 
 from __future__ import annotations
@@ -25,7 +27,6 @@ from __future__ import annotations
 import os
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from matplotlib.figure import Figure
 
@@ -34,10 +35,8 @@ from .atomic import write_figure
 from .cost_plot import plot_cost
 from .iterations_plot import plot_iterations
 from .orbit_plots import plot_orbits, plot_raan, raan_gap_history, vehicle_altitude
+from .plan_record import DrawnPlan
 from .plot_common import FIGURE_SIZE, _positions
-
-if TYPE_CHECKING:  # solution imports report (Solution.plot): the types are hints only
-    from ..solution import Solution
 
 __all__ = [
     "FIGURE_NAMES",
@@ -59,7 +58,7 @@ SUPPORTED_FORMATS = ("png", "svg", "pdf")
 """File formats :func:`save_figures` accepts."""
 
 
-def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Figure]:
+def figures(solution: DrawnPlan, catalog: Catalog | None = None) -> dict[str, Figure]:
     """The four figures of a run folder, by name (:data:`FIGURE_NAMES`), not saved.
 
     ``catalog`` defaults to ``solution.catalog`` (set by :func:`sdc_cvx.solve`); without
@@ -78,7 +77,7 @@ def figures(solution: Solution, catalog: Catalog | None = None) -> dict[str, Fig
     return {name: drawn[name] for name in FIGURE_NAMES if name in drawn}
 
 
-def transfer_line(solution: Solution) -> str | None:
+def transfer_line(solution: DrawnPlan) -> str | None:
     """A line saying the figures are of a low-thrust plan (None for the paper's impulsive
     model, which every figure's own title assumes)."""
     model = solution.mission.transfer_model().describe()
@@ -88,7 +87,7 @@ def transfer_line(solution: Solution) -> str | None:
             "spiral")  # fmt: skip
 
 
-def _head(fig: Figure, solution: Solution, title: str | None = None) -> None:
+def _head(fig: Figure, solution: DrawnPlan, title: str | None = None) -> None:
     """The line above a figure: ``title`` (a campaign's mission) and the transfer model
     where it is not the paper's."""
     above = "; ".join(line for line in (title, transfer_line(solution)) if line)
@@ -98,7 +97,7 @@ def _head(fig: Figure, solution: Solution, title: str | None = None) -> None:
 
 # ---------------------------------------------------------------------- saving
 def save_figures(
-    solution: Solution,
+    solution: DrawnPlan,
     catalog: Catalog,
     folder: str | os.PathLike,
     formats: Sequence[str] = ("png",),

@@ -33,7 +33,7 @@ from collections.abc import Callable
 from datetime import datetime
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, TextIO
+from typing import TextIO
 
 from ..errors import FolderError
 from ..inputs.catalog import Catalog
@@ -45,9 +45,7 @@ from .out_folder import (
     out_folder_problem,
     real_folder,
 )
-
-if TYPE_CHECKING:  # solution imports this module (Solution.save): the type is a hint only
-    from ..solution import Solution
+from .plan_record import SavedPlan
 
 LIVE_LOG_SIGNATURE = "# sdc_cvx live log: it moves into the results folder when the work ends"
 """First line of a live log: a ``NAME.log`` without it is the user's and never touched."""
@@ -162,7 +160,7 @@ def _parent_lock(folder: Path):
 
 def write_run(
     folder: Path | str,
-    solution: Solution,
+    solution: SavedPlan,
     edges: EdgeTable | None = None,
     *,
     scenario_toml: str | None = None,
@@ -376,7 +374,7 @@ def _swap(stage: Path, folder: Path) -> None:
 
 
 def save_solution(
-    solution: Solution,
+    solution: SavedPlan,
     folder: Path | str,
     *,
     formats: tuple[str, ...] = ("png",),
