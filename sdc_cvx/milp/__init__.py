@@ -1,4 +1,5 @@
 """MILP: solver options, normalised results, the backend table and the solve with fallback.
 
-The only place besides :mod:`sdc_cvx.planner` that imports CVXPY.
+With :mod:`sdc_cvx.planner` and :mod:`sdc_cvx.campaign`, the only places that import CVXPY
+(:mod:`.types` names the backends without it).
 """

@@ -1,1 +1,2 @@
-"""Study: scenario files, parameter studies (sweeps), their worker, runner and results."""
+"""Study: scenario files (and the checks of their tables), parameter studies (sweeps),
+their worker, executors, runner, results and figure."""
