@@ -47,7 +47,7 @@ BARE = ["-c", "import cvxpy, pandas, scipy"]
 RUN = ["-m", "sdc_cvx", "run"]  # README's first command; --out is added
 PHASES = (  # label, and the function timed, named where its caller looks it up
     ("search (planner.api.solve)", "sdc_cvx.planner.api", "solve"),
-    ("  fixed-path schedules", "sdc_cvx.planner.certified.search", "solve_path"),
+    ("  fixed-path schedules", "sdc_cvx.planner.certified.state", "solve_path"),
     ("edges.csv pre-optimisation", "sdc_cvx.network.edges", "preoptimize"),
     ("run folder (write_run)", "sdc_cvx.report.run_folder", "write_run"),
     ("  figures", "sdc_cvx.report.plots", "save_figures"),

@@ -111,7 +111,7 @@ def test_the_setup_says_up_front_when_the_limit_cannot_be_met():
 
     import pytest
 
-    from sdc_cvx.planner.certified.network import OutOfTime, cost_table_clock
+    from sdc_cvx.planner.certified.clock import OutOfTime, cost_table_clock
 
     lines = []
     asked = []

@@ -18,7 +18,7 @@ from sdc_cvx import Mission, SolverOptions, solve
 from sdc_cvx.inputs.formats import read_catalog
 from sdc_cvx.network.edges import drift_radius_bounds, node_orbits
 from sdc_cvx.planner.api import certified_nodes
-from sdc_cvx.planner.certified import network
+from sdc_cvx.planner.certified import clock
 from sdc_cvx.planner.certified.greedy import greedy_plan
 from sdc_cvx.planner.nodes import MissionNodes
 from sdc_cvx.solution import RunStatus
@@ -54,8 +54,8 @@ def test_a_greedy_plan_flies_and_ends_by_tmax():
 @needs_gtoc9
 def test_late_tables_give_a_greedy_plan_first_and_the_search_goes_on(monkeypatch):
     # every projection "late" from the first chunk of tables on
-    monkeypatch.setattr(network, "PROJECTION_S", 0.0)
-    monkeypatch.setattr(network, "FALLBACK_RESERVE", 1.0)
+    monkeypatch.setattr(clock, "PROJECTION_S", 0.0)
+    monkeypatch.setattr(clock, "FALLBACK_RESERVE", 1.0)
     lines = []
     catalog = read_catalog(str(GTOC9), "gtoc9")
     answer = solve(catalog, Mission(n=5, tmax_days=365.25, **PAPER_LEGS),
