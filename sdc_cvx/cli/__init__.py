@@ -2,7 +2,8 @@
 
 Commands: ``run [SCENARIO.toml]``, ``campaign SCENARIO.toml``, ``fly RUN_DIR``, ``sweep
 STUDY.toml``, ``edges [SCENARIO.toml]``, ``catalog [FILE]``, ``solvers``, ``gtoc9-check
-FOLDER`` (:mod:`.gtoc9`: exit 1 on a GTOC9 rule broken).  Exit codes: 0 success,
+FOLDER`` (:mod:`.gtoc9`: exit 1 on a GTOC9 rule broken), ``gtoc9-plan SCENARIO.toml``
+(:mod:`.gtoc9_plan`: GTOC9's Kessler Run for its cost J).  Exit codes: 0 success,
 2 invalid input (nothing written), 3 infeasible mission or campaign (or a flight not flown
 as planned, its files written), 4 solver failure or a full disk, 130 interrupted (Ctrl-C)
 with nothing written.
@@ -25,6 +26,7 @@ from .campaign import campaign_command
 from .exits import EXIT_CODES, INFEASIBLE, INPUT_ERROR, INTERRUPTED, SOLVER_FAILED, exit_code
 from .fly import fly_command
 from .gtoc9 import gtoc9_check_command
+from .gtoc9_plan import gtoc9_plan_command
 from .progress import RunProgress, quiet_resource_tracker
 from .run import run_command
 from .sweep import sweep_command
@@ -71,3 +73,4 @@ main.add_command(edges_command)
 main.add_command(catalog_command)
 main.add_command(solvers_command)
 main.add_command(gtoc9_check_command)
+main.add_command(gtoc9_plan_command)

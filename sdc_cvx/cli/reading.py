@@ -31,7 +31,22 @@ def build_scenario(scenario_file: str | None, **overrides) -> Scenario:
             scenario_file, catalog_path=overrides.get("catalog_path"))  # its own may be gone
         return apply_overrides(scenario, overrides, origin="command line")
     except ScenarioError as err:
+        if scenario_file is not None and _asks_gtoc9_cost(scenario_file):
+            fail(f"{scenario_file}: objective = 'gtoc9-cost' is GTOC9's Kessler Run: plan it "
+                 f"with 'python -m sdc_cvx gtoc9-plan {scenario_file}'")  # fmt: skip
         fail(str(err))
+
+
+def _asks_gtoc9_cost(scenario_file: str) -> bool:
+    """Whether the file's ``[campaign]`` asks GTOC9's cost J (a Kessler Run scenario)."""
+    import tomllib
+
+    try:
+        with open(scenario_file, "rb") as handle:
+            campaign = tomllib.load(handle).get("campaign", {})
+    except (OSError, tomllib.TOMLDecodeError):
+        return False
+    return isinstance(campaign, dict) and campaign.get("objective") == "gtoc9-cost"
 
 
 def read_catalog(scenario: Scenario, on_invalid: str = "raise") -> Catalog:
