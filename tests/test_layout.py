@@ -31,7 +31,7 @@ RULES = {
     "study": {"planner", "inputs", "milp", "report", "solution"},
     "flight": {"physics", "inputs", "solution", "report", "study"},
     "campaign": {"planner", "inputs", "milp", "network", "physics", "solution", "study", "report"},
-    "gtoc9": {"flight", "inputs", "network", "physics"},  # GTOC9's files, validator, search
+    "gtoc9": {"flight", "inputs", "physics"},  # GTOC9's files, their validator, the search
     "cli": {
         "flight",
         "physics",

@@ -289,7 +289,7 @@ def plan_campaign(legs: Gtoc9Legs, *, rules: Gtoc9Rules = DEFAULT_RULES,
 
 def search_campaign(legs: Gtoc9Legs, *, rules: Gtoc9Rules = DEFAULT_RULES,
                     settings: SearchSettings = SearchSettings(), time_limit_s: float = 600.0,
-                    rounds: int = 1000, prize_step_mps: float = 80.0,
+                    rounds: int = 1000, prize_step_mps: float = 80.0, adapt_legs: bool = True,
                     say: Callable[[str], None] = lambda text: None) -> PlannedCampaign:  # fmt: skip
     """The best complete campaign of rounds of :func:`plan_campaign` (module docstring).
 
@@ -327,7 +327,8 @@ def search_campaign(legs: Gtoc9Legs, *, rules: Gtoc9Rules = DEFAULT_RULES,
         if time.perf_counter() - clock > time_limit_s:
             break
         prize[~removed] += prize_step_mps
-        day_price *= 0.9 if complete else 1.25
+        if adapt_legs:
+            day_price *= 0.9 if complete else 1.25
         day_cost *= 0.9 if complete else 1.25
     return best
 

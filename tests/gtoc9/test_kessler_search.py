@@ -33,7 +33,7 @@ EXAMPLE = REPO / "examples" / "gtoc9_kessler_run.toml"
 @pytest.fixture(scope="module")
 @computed_once
 def legs():
-    return Gtoc9Legs.build()
+    return Gtoc9Legs.build(direct=True)  # both structures: every test covers the direct leg
 
 
 def test_the_mass_chain_is_the_validators_on_the_same_impulses():
@@ -54,22 +54,30 @@ def test_a_leg_of_the_table_is_the_same_leg_priced_alone(legs):
     i, j = 121, 25  # a leg of a planned mission (days 60-76)
     alone = LegCosts.build(legs.table.origin.take([legs.edge(i, j)]),
                            legs.table.target.take([legs.edge(i, j)]), legs.table.a_low,
-                           legs.table.a_high,
+                           legs.table.a_high, mu=398600.4418e9,
                            eccentricity=tuple(v.take([legs.edge(i, j)])
                                               for v in legs.table.eccentricity))
     assert legs.ids[i] == str(i) and legs.ids[j] == str(j)
     # the edge of (i, j) runs from i to j
     assert legs.origin[legs.edge(i, j)] == i and legs.target[legs.edge(i, j)] == j
     dates = np.arange(0.0, 2900.0, 1.0)
-    table = legs.cost(i, j, dates, dates + 20.0).cost
+    table = Gtoc9Legs(legs.ids, legs.origin, legs.target, legs.table, legs.start_mjd2000,
+                      direct=False).cost(i, j, dates, dates + 20.0).cost
     single = alone.cost_at(np.zeros(len(dates), int), dates, dates + 20.0, rule="free",
                            j2=legs.j2).cost  # fmt: skip
     np.testing.assert_array_equal(table, single)
     assert np.isfinite(table).any()
+    # the direct leg only ever lowers the cost, and is the cheaper one where it says so
+    both = legs.cost(i, j, dates, dates + 20.0)
+    assert np.all(both.cost <= np.where(np.isfinite(table), table, np.inf))
+    direct = both.side == 0
+    np.testing.assert_allclose(both.cost[direct],
+                               legs.direct_cost(legs.edge(i, j), dates, dates + 20.0)[direct])
 
 
 def test_the_eccentricity_only_adds_to_a_legs_cost(legs):
-    circular = Gtoc9Legs.build(eccentricity=False)
+    circular = Gtoc9Legs.build(eccentricity=False, direct=True)
+    assert legs.direct and circular.direct
     rng = np.random.default_rng(5)
     i = rng.integers(0, 123, 20000)
     j = (i + rng.integers(1, 123, 20000)) % 123
@@ -80,6 +88,67 @@ def test_the_eccentricity_only_adds_to_a_legs_cost(legs):
     assert finite.sum() > 100
     assert np.all(priced[finite] >= paper[finite] - 1e-9)
     assert np.all(np.isinf(priced[~finite]))
+
+
+def _gtoc9_rows():
+    """GTOC9's debris file as (id, epoch, a, e, i, RAAN, argp, M) rows."""
+    path = REPO.parent / "shared" / "data" / "gtoc9" / "debris_data.txt"
+    return np.loadtxt(path)
+
+
+def _hohmann_with_plane_change(r1, r2, theta, mu=398600.4418e9):
+    """Eq. 11-13 of the paper, written again: the plane change at the higher radius."""
+    low, high = min(r1, r2), max(r1, r2)
+    at = 0.5 * (low + high)
+    v_low, v_high = math.sqrt(mu / low), math.sqrt(mu / high)
+    v_peri = math.sqrt(mu * (2 / low - 1 / at))
+    v_apo = math.sqrt(mu * (2 / high - 1 / at))
+    return (v_peri - v_low) + math.sqrt(v_high**2 + v_apo**2
+                                        - 2 * v_high * v_apo * math.cos(theta))
+
+
+def test_the_direct_leg_is_a_hohmann_transfer_with_the_plane_angle_and_its_phasing():
+    legs = Gtoc9Legs.build(eccentricity=False, direct=True)
+    rows = _gtoc9_rows()
+    mu, r_eq, j2 = 398600.4418e9, 6378137.0, 1.08262668e-3
+
+    def raan(k, day):  # GTOC9's equations page: the secular J2 rate from the epoch
+        _, epoch, a, e, inc, node, _, _ = rows[k]
+        n = math.sqrt(mu / a**3)
+        rate = -1.5 * j2 * (r_eq / (a * (1 - e * e))) ** 2 * n * math.cos(inc)
+        return node + rate * (23467.0 + day - epoch) * 86400.0
+
+    checked = 0
+    for i, j, t_d, t_a in ((121, 25, 60.0, 70.0), (7, 85, 480.0, 490.0), (3, 14, 1000.0, 1003.0),
+                           (40, 87, 1800.0, 1812.5)):
+        a_i, a_j, inc_i, inc_j = rows[i][2], rows[j][2], rows[i][4], rows[j][4]
+        angles = []
+        for day in (t_d, t_a):
+            gap = raan(j, day) - raan(i, day)
+            angles.append(math.acos(math.cos(inc_i) * math.cos(inc_j)
+                                    + math.sin(inc_i) * math.sin(inc_j) * math.cos(gap)))
+        n_j = math.sqrt(mu / a_j**3)
+        phasing = math.sqrt(mu / a_j) * math.pi / (1.5 * n_j * (t_a - t_d) * 86400.0)
+        expected = _hohmann_with_plane_change(a_i, a_j, min(angles)) + phasing
+        got = float(legs.direct_cost(legs.edge(i, j), t_d, t_a))
+        assert got == pytest.approx(expected, rel=1e-6), (i, j)
+        checked += 1
+    assert checked == 4
+
+
+def test_a_legs_box_bound_is_never_above_a_leg_in_its_box(legs):
+    rng = np.random.default_rng(11)
+    count = 40000
+    i = rng.integers(0, 123, count)
+    j = (i + rng.integers(1, 123, count)) % 123
+    t1 = rng.uniform(0.0, 2900.0, count)
+    t3 = t1 + rng.uniform(1.0, 25.0, count)
+    bound = legs.bound(i, j, t1, t1 + 2.0, t3, t3 + 2.0)
+    for u, w in ((0.0, 0.0), (2.0, 2.0), (0.7, 1.3), (2.0, 0.0)):
+        leg = legs.cost(i, j, t1 + u, t3 + w).cost
+        finite = np.isfinite(leg)
+        assert finite.any()
+        assert np.all(bound[finite] <= leg[finite] + 1e-9)
 
 
 def _brute_force_pair(legs, available, launches, grid):
