@@ -4,6 +4,9 @@
   :func:`write_mission_file`, :func:`read_mission_file`; :mod:`.campaign_file` - a
   campaign folder (:func:`write_campaign`: ``gtoc9/mission_NN.txt`` and ``campaign.json``);
   :mod:`.from_flight` - a flown mission's events (:func:`flight_events`);
+- :mod:`.flying` - missions flown leg by leg in GTOC9's dynamics (:func:`~.flying.fly_leg`,
+  :func:`~.flying.fly_mission`: the paper's drift leg as seed, the flight's guidance,
+  the arrival targeted in GTOC9's ODE);
 - :mod:`.check` - :func:`check_folder` / :func:`check_mission`, every rule re-checked as
   the competition did (its docstring states the readings of the ambiguous ones);
 - :mod:`.rules` - GTOC9's constants (:class:`Gtoc9Rules`); :mod:`.dynamics` - its ODE;
