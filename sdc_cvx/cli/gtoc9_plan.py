@@ -29,17 +29,23 @@ from .exits import INFEASIBLE, fail
               help="Output folder [a new sdc_gtoc9_* folder here].")  # fmt: skip
 @click.option("--time-limit", "time_limit_s", type=click.FloatRange(min=0.0, min_open=True),
               default=None, help="Seconds of search [the scenario's time_limit_s].")
+@click.option("--fly", is_flag=True,
+              help="Fly every planned mission leg by leg in GTOC9's dynamics and write "
+                   "gtoc9/mission_NN.txt and campaign.json (then check them with gtoc9-check).")
+@click.option("--workers", type=click.IntRange(min=1), default=None,
+              help="Processes flying legs at once with --fly [one per core].")
 @click.option("--quiet", is_flag=True, help="No progress, only the summary.")
-def gtoc9_plan_command(scenario_file, out_dir, time_limit_s, quiet):
+def gtoc9_plan_command(scenario_file, out_dir, time_limit_s, fly, workers, quiet):
     """Plan GTOC9's Kessler Run: all debris removed by missions in sequence, at least J.
 
     SCENARIO.toml: [catalog] path (GTOC9's debris file), [campaign] objective =
     "gtoc9-cost" and remove_all = true, [rules] (GTOC9's constants, each its default),
     [search] (beam, day_price_mps, waits_days, launch_window_days, launch_step_days,
     max_debris, time_limit_s, rounds, prize_step_mps); see
-    examples/gtoc9_kessler_run.toml.  Writes plan.json and missions.csv.  Exit 0 a
-    complete campaign, 3 none found in the limits (the best incomplete one written),
-    2 invalid input.
+    examples/gtoc9_kessler_run.toml.  Writes plan.json and missions.csv; with --fly also
+    the GTOC9 mission files and campaign.json, every mission flown.  Exit 0 a complete
+    campaign, 3 none found in the limits (the best incomplete one written, flown with
+    --fly), 2 invalid input.
     """
     from ..errors import SdcError
     from ..gtoc9.legs import Gtoc9Legs
@@ -91,6 +97,8 @@ def gtoc9_plan_command(scenario_file, out_dir, time_limit_s, quiet):
                              f"{legs.start_mjd2000 + m.launch:.6f}",
                              f"{legs.start_mjd2000 + m.end:.6f}", f"{m.dv:.3f}",
                              f"{m.m0(scenario.rules):.3f}", f"{m.cost(scenario.rules):.4f}"])
+    if fly:
+        _fly(campaign, legs.start_mjd2000, out, scenario.rules, workers, say)
     bound = summary["lower_bound_meur"]
     click.echo(f"{summary['status']}: {summary['removed']} of {legs.count} debris, "
                f"{len(campaign.missions)} missions, ΔV {campaign.dv:.0f} m/s, J = "
@@ -98,3 +106,42 @@ def gtoc9_plan_command(scenario_file, out_dir, time_limit_s, quiet):
                f"{100 * summary['gap']:.1f} %), {seconds:.0f} s; planned, not flown -> {out}")
     if summary["status"] != "complete":
         sys.exit(INFEASIBLE)
+
+
+def _fly(campaign, start_mjd2000, out, rules, workers, say) -> None:
+    """Fly each mission (:func:`sdc_cvx.gtoc9.flying.fly_mission`) and write the GTOC9
+    folder (:func:`sdc_cvx.gtoc9.write_campaign`)."""
+    import math
+    from concurrent.futures import ProcessPoolExecutor
+
+    from ..errors import SdcError
+    from ..flight.guidance import GuidanceError
+    from ..gtoc9 import write_campaign
+    from ..gtoc9.flying import fly_mission
+
+    flown = []
+    with ProcessPoolExecutor(workers) as pool:
+        for number, m in enumerate(campaign.missions, start=1):
+            clock = time.perf_counter()
+            seeds = [(a, inc) if math.isfinite(a) and math.isfinite(inc) else None
+                     for a, inc in zip(m.a_drift, m.inc_drift, strict=True)]  # fmt: skip
+            try:
+                mission = fly_mission(m.debris, [start_mjd2000 + t for t in m.departures],
+                                      [start_mjd2000 + t for t in m.arrivals], seeds,
+                                      map=pool.map, rules=rules)  # fmt: skip
+            except (SdcError, GuidanceError) as err:
+                say(f"  mission {number} NOT flown: {err}")
+                continue
+            flown.append(mission.events)
+            worst = max((leg.miss_m for leg in mission.legs), default=0.0)
+            say(f"  mission {number} flown: {mission.dv_total_mps:.1f} m/s (planned "
+                f"{m.dv:.1f}), m0 {mission.m0_kg:.1f} kg, worst miss {worst:.2f} m "
+                f"({time.perf_counter() - clock:.0f} s)")  # fmt: skip
+    if not flown:
+        say("no mission flown: no GTOC9 mission file written")
+        return
+    if len(flown) < len(campaign.missions):
+        say(f"{len(campaign.missions) - len(flown)} mission(s) not flown: the files hold the "
+            "others, renumbered in order")  # fmt: skip
+    path = write_campaign(out, flown, rules=rules)
+    say(f"flown: {path}; check it with 'python -m sdc_cvx gtoc9-check {out}'")

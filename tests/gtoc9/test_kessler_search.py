@@ -267,3 +267,29 @@ def test_the_campaign_commands_point_a_kessler_run_to_gtoc9_plan(command, tmp_pa
     assert run.returncode == 2
     assert f"gtoc9-plan {EXAMPLE}" in run.stderr
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.slow
+def test_a_planned_mission_flown_by_gtoc9_plan_passes_the_check(legs, tmp_path):
+    from sdc_cvx.cli.gtoc9_plan import _fly
+    from sdc_cvx.gtoc9 import DebrisTable, check_folder, find_debris_file
+    from sdc_cvx.gtoc9.plan import PlannedCampaign
+
+    # tests/gtoc9/test_flying.py's mission (planes within 0.25 deg), planned by the table
+    start = legs.start_mjd2000
+    arrivals, departures = (23940.0, 23962.0, 23985.0), (23947.0, 23967.0, 23990.0)
+    first = legs.cost(0, 104, departures[0] - start, arrivals[1] - start)
+    second = legs.cost(104, 67, departures[1] - start, arrivals[2] - start)
+    mission = PlannedMission((0, 104, 67), tuple(t - start for t in arrivals),
+                             tuple(t - start for t in departures),
+                             (float(first.cost), float(second.cost)),
+                             (float(first.a_drift), float(second.a_drift)),
+                             (float(first.inc_drift), float(second.inc_drift)))
+    said = []
+    _fly(PlannedCampaign((mission,)), start, tmp_path, Gtoc9Rules(), 2, said.append)
+    report = check_folder(tmp_path, DebrisTable.read(find_debris_file()))
+    assert not report.all_violations, report.all_violations
+    assert [tuple(m.debris) for m in report.missions] == [(0, 104, 67)]
+    assert any("mission 1 flown" in line for line in said)
+    summary = json.loads((tmp_path / "campaign.json").read_text())
+    assert len(summary["missions"]) == 1
