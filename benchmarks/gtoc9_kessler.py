@@ -4,7 +4,7 @@ Runs :func:`sdc_cvx.gtoc9.search.search_campaign` on all 123 debris for ``--time
 seconds and prints: each mission's debris, dates, ΔV, launch mass m0 and cost; the
 campaign's status (complete or not), missions, debris removed, ΔV, J, its lower bound in
 the planner's model and the gap; the seconds to the best campaign and in all; the peak
-memory; and the best open campaigns published (Tsinghua's MTS-DP, JGCD 2024: their ΔV
+memory; and the best open campaigns published (MTS-DP, Tsinghua, JGCD 2024: their ΔV
 estimated by Shen & Casalino's method, not flown), beside ours.  Our missions are planned
 in the paper's drift-leg model with the eccentricity priced, not flown.
 
@@ -23,8 +23,8 @@ import resource
 import time
 
 PUBLISHED = (
-    ("MTS-DP, 9 missions (Zhong et al., JGCD 2024)", 9, 22612.0, 645.88),
-    ("MTS-DP, 10 missions (Zhong et al., JGCD 2024)", 10, 26039.0, 741.26),
+    ("MTS-DP, 9 missions (Tsinghua, JGCD 2024)", 9, 22612.0, 645.88),
+    ("MTS-DP, 10 missions (Tsinghua, JGCD 2024)", 10, 26039.0, 741.26),
 )
 """name, missions, ΔV [m/s] (estimated, not flown), J [MEUR] (c = 55 MEUR a mission)."""
 

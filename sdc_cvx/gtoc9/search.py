@@ -30,10 +30,10 @@ References
 ----------
 .. [1] ESA Advanced Concepts Team, "GTOC9: The Kessler Run" (2017), problem and
    constants pages.
-.. [2] Z. Zhong et al., "Multi-tree search for multi-satellite responsiveness
-   scheduling considering orbital maneuvering" and the GTOC9 MTS-DP campaign, JGCD 2024
-   (repository ``zhong-zh15/gtoc9_MTS-DP``, read, not copied): the published campaigns
-   this search is measured against.
+.. [2] Tsinghua University's multi-tree search with dynamic programming for GTOC9
+   (MTS-DP), Journal of Guidance, Control, and Dynamics (2024); its repository
+   ``zhong-zh15/gtoc9_MTS-DP`` (GPL-3: read, never copied): the published campaigns this
+   search is measured against.
 """
 
 from __future__ import annotations
